@@ -1,0 +1,102 @@
+//! The balls (P2-P5), kept as one array per field so that the hot loops walk
+//! contiguous memory and a later scale-up to many balls stays cheap.
+
+use crate::room::Surface;
+use glam::DVec3;
+
+/// What colour a ball has taken on (P5): white until it hits something.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Tint {
+    White,
+    Surface(Surface),
+    Tumbler(usize),
+}
+
+/// Uniform solid spheres. Velocities are instantaneous velocities at the
+/// current time; `spin` is the angular velocity, which friction with the
+/// surfaces couples to the sliding velocity so that balls roll.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Balls {
+    pub(crate) position: Vec<DVec3>,
+    pub(crate) velocity: Vec<DVec3>,
+    pub(crate) spin: Vec<DVec3>,
+    pub(crate) radius: Vec<f64>,
+    pub(crate) mass: Vec<f64>,
+    pub(crate) inv_mass: Vec<f64>,
+    pub(crate) tint: Vec<Tint>,
+    pub(crate) alive: Vec<bool>,
+}
+
+impl Balls {
+    pub(crate) fn with_uniform(count: usize, radius: f64, mass: f64) -> Balls {
+        Balls {
+            position: vec![DVec3::ZERO; count],
+            velocity: vec![DVec3::ZERO; count],
+            spin: vec![DVec3::ZERO; count],
+            radius: vec![radius; count],
+            mass: vec![mass; count],
+            inv_mass: vec![1.0 / mass; count],
+            tint: vec![Tint::White; count],
+            alive: vec![true; count],
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.position.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.position.is_empty()
+    }
+
+    pub fn positions(&self) -> &[DVec3] {
+        &self.position
+    }
+
+    pub fn velocities(&self) -> &[DVec3] {
+        &self.velocity
+    }
+
+    pub fn spins(&self) -> &[DVec3] {
+        &self.spin
+    }
+
+    pub fn radii(&self) -> &[f64] {
+        &self.radius
+    }
+
+    pub fn masses(&self) -> &[f64] {
+        &self.mass
+    }
+
+    pub fn tints(&self) -> &[Tint] {
+        &self.tint
+    }
+
+    pub fn alive(&self) -> &[bool] {
+        &self.alive
+    }
+
+    /// Moment of inertia of ball `i` (uniform solid sphere).
+    pub fn inertia(&self, i: usize) -> f64 {
+        0.4 * self.mass[i] * self.radius[i] * self.radius[i]
+    }
+
+    pub fn kinetic_energy(&self, i: usize) -> f64 {
+        0.5 * self.mass[i] * self.velocity[i].length_squared()
+            + 0.5 * self.inertia(i) * self.spin[i].length_squared()
+    }
+
+    /// Sets one ball's state, for building scenarios and tests.
+    pub fn set(&mut self, i: usize, position: DVec3, velocity: DVec3) {
+        self.position[i] = position;
+        self.velocity[i] = velocity;
+        self.spin[i] = DVec3::ZERO;
+    }
+
+    /// Changes one ball's mass, for scenarios with unequal balls.
+    pub fn set_mass(&mut self, i: usize, mass: f64) {
+        self.mass[i] = mass;
+        self.inv_mass[i] = 1.0 / mass;
+    }
+}

@@ -1,0 +1,236 @@
+//! Every constant of a physics scene, as plain data.
+//!
+//! The values of [`WorldConfig::default`] are the built-in default scene. The
+//! scene-file loader of the program overlays a user's TOML on top of them and
+//! checks ranges; [`crate::World::new`] only rejects what cannot be built
+//! (bodies that do not fit in the room).
+
+use glam::DVec3;
+
+/// An RGB colour with components in 0..=1 (linear).
+pub type Rgb = [f32; 3];
+
+/// The closed room: an axis-aligned box with the floor at y = 0, centred on x = z = 0.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoomConfig {
+    /// Inner size along x, y and z in metres.
+    pub size: DVec3,
+    /// Colours of the six surfaces, in [`crate::Surface::ALL`] order:
+    /// floor, ceiling, left (-x), right (+x), back (-z), front (+z).
+    pub colors: [Rgb; 6],
+    /// Coefficient of restitution of a ball bouncing on any surface.
+    pub restitution: f64,
+    /// Coulomb friction coefficient between a ball and a surface.
+    pub friction: f64,
+    /// Rolling resistance coefficient of a ball rolling on a surface
+    /// (deceleration = coefficient x the normal acceleration).
+    pub rolling_resistance: f64,
+}
+
+/// The balls and how they are started.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BallsConfig {
+    pub count: usize,
+    pub radius: f64,
+    pub mass: f64,
+    /// Coefficient of restitution of a ball-ball collision (P2's damping factor).
+    pub restitution: f64,
+    /// Initial speeds are drawn uniformly from this range (m/s).
+    pub speed_min: f64,
+    pub speed_max: f64,
+    /// Colour of a ball that has not hit anything yet.
+    pub color: Rgb,
+}
+
+/// One sphere of a tumbler's compound shape, in the tumbler's body frame.
+///
+/// The body frame has its origin at the centre of the bottom sphere and its
+/// +y axis along the tumbler's axis of symmetry, so a sphere is placed by its
+/// height on that axis alone.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereSpec {
+    pub height: f64,
+    pub radius: f64,
+    pub mass: f64,
+}
+
+/// Where a tumbler starts: its position on the floor and an initial tilt.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TumblerPlacement {
+    /// x and z of the bottom sphere's centre.
+    pub x: f64,
+    pub z: f64,
+    /// Tilt axis (horizontal; normalised when used) and angle in degrees.
+    pub tilt_axis: DVec3,
+    pub tilt_deg: f64,
+}
+
+/// The tumblers: one shared shape, several placements.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TumblersConfig {
+    /// The compound shape. The first sphere is the round bottom, which rests
+    /// on the floor; every other sphere must be smaller than it.
+    pub spheres: Vec<SphereSpec>,
+    pub placements: Vec<TumblerPlacement>,
+    /// Restitution of impacts between a tumbler and anything.
+    pub restitution: f64,
+    /// Coulomb friction between the round bottom and the floor.
+    pub floor_friction: f64,
+    /// Rate (1/s) at which rocking and spinning lose energy; 0 rocks forever.
+    pub damping: f64,
+    pub colors: Vec<Rgb>,
+}
+
+/// The fireball (P8): constant speed, no gravity, a ball's mass.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FireballConfig {
+    pub radius: f64,
+    pub speed: f64,
+    /// Where `F` launches it from when the caller does not pass a position.
+    pub spawn: DVec3,
+    pub direction: DVec3,
+}
+
+/// The hand that drags a grabbed tumbler: a spring-damper at the grab point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GrabConfig {
+    /// Spring stiffness in N/m.
+    pub stiffness: f64,
+    /// Damping in N s/m, on the grab point's velocity.
+    pub damping: f64,
+    /// The largest force the hand applies, in N.
+    pub max_force: f64,
+}
+
+/// Time stepping and contact solving.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolverConfig {
+    /// Fixed time step in seconds.
+    pub dt: f64,
+    /// Gauss-Seidel iterations per contact stage.
+    pub iterations: usize,
+    /// Below this approach speed (m/s) an impact does not bounce: it rests.
+    pub bounce_threshold: f64,
+    /// Below this approach speed (m/s) a contact emits no event and changes no colour.
+    pub event_threshold: f64,
+}
+
+/// Everything the physics needs to build a [`crate::World`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorldConfig {
+    /// Gravitational acceleration in m/s^2, acting along -y.
+    pub gravity: f64,
+    pub room: RoomConfig,
+    pub balls: BallsConfig,
+    pub tumblers: TumblersConfig,
+    pub fireball: FireballConfig,
+    pub grab: GrabConfig,
+    pub solver: SolverConfig,
+}
+
+impl Default for WorldConfig {
+    fn default() -> Self {
+        let placements = [
+            (-2.2, -1.2),
+            (2.2, -1.2),
+            (0.0, -2.4),
+            (-1.4, 1.6),
+            (1.4, 1.6),
+        ]
+        .map(|(x, z)| TumblerPlacement {
+            x,
+            z,
+            tilt_axis: DVec3::X,
+            tilt_deg: 0.0,
+        })
+        .to_vec();
+        WorldConfig {
+            gravity: 9.81,
+            room: RoomConfig {
+                size: DVec3::new(8.0, 4.0, 8.0),
+                colors: [
+                    [0.62, 0.42, 0.24], // floor: wood
+                    [0.92, 0.91, 0.88], // ceiling: white
+                    [0.78, 0.12, 0.10], // left: red
+                    [0.16, 0.62, 0.22], // right: green
+                    [0.90, 0.86, 0.74], // back: cream
+                    [0.20, 0.32, 0.78], // front: blue
+                ],
+                restitution: 0.75,
+                friction: 0.4,
+                rolling_resistance: 0.02,
+            },
+            balls: BallsConfig {
+                count: 30,
+                radius: 0.12,
+                mass: 0.25,
+                restitution: 0.85,
+                speed_min: 2.0,
+                speed_max: 6.0,
+                color: [0.95, 0.95, 0.95],
+            },
+            tumblers: TumblersConfig {
+                spheres: vec![
+                    SphereSpec {
+                        height: 0.0,
+                        radius: 0.30,
+                        mass: 2.0,
+                    }, // round bottom
+                    SphereSpec {
+                        height: -0.17,
+                        radius: 0.12,
+                        mass: 4.0,
+                    }, // ballast
+                    SphereSpec {
+                        height: 0.30,
+                        radius: 0.24,
+                        mass: 0.4,
+                    }, // belly
+                    SphereSpec {
+                        height: 0.50,
+                        radius: 0.19,
+                        mass: 0.25,
+                    }, // chest
+                    SphereSpec {
+                        height: 0.68,
+                        radius: 0.17,
+                        mass: 0.2,
+                    }, // head
+                    SphereSpec {
+                        height: 0.86,
+                        radius: 0.06,
+                        mass: 0.05,
+                    }, // top knot
+                ],
+                placements,
+                restitution: 0.5,
+                floor_friction: 0.6,
+                damping: 0.35,
+                colors: vec![
+                    [0.85, 0.15, 0.12],
+                    [0.95, 0.65, 0.10],
+                    [0.20, 0.55, 0.85],
+                    [0.55, 0.25, 0.70],
+                    [0.10, 0.65, 0.55],
+                ],
+            },
+            fireball: FireballConfig {
+                radius: 0.15,
+                speed: 6.0,
+                spawn: DVec3::new(0.0, 1.5, 3.5),
+                direction: DVec3::new(0.3, -0.1, -1.0),
+            },
+            grab: GrabConfig {
+                stiffness: 400.0,
+                damping: 40.0,
+                max_force: 600.0,
+            },
+            solver: SolverConfig {
+                dt: 1.0 / 120.0,
+                iterations: 8,
+                bounce_threshold: 0.2,
+                event_threshold: 0.05,
+            },
+        }
+    }
+}

@@ -1,0 +1,223 @@
+//! Contacts and the sequential-impulse solver that resolves them.
+//!
+//! A contact joins a ball or tumbler (`a`) to a ball, tumbler or wall (`b`).
+//! The solver runs in two stages per step:
+//!
+//! 1. **predict**, on the velocities that will carry the bodies through the
+//!    step: no contact may close more than its gap (speculative contacts, so
+//!    nothing tunnels into anything), and touching contacts may not approach;
+//! 2. **project**, after the bodies have moved: contacts that pushed in stage 1
+//!    end with the bounce their restitution asks for (measured from the
+//!    approach speed before the step), or at rest.
+//!
+//! Every impulse is along the contact normal with a non-negative magnitude,
+//! so neither stage can add energy.
+
+use crate::balls::Balls;
+use crate::room::Surface;
+use crate::tumbler::Tumbler;
+use glam::{DMat3, DVec3};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum BodyRef {
+    Ball(usize),
+    /// A tumbler and which of its six spheres touches.
+    Tumbler(usize, usize),
+    Wall(Surface),
+}
+
+#[derive(Clone, Debug)]
+pub(crate) struct Contact {
+    pub a: BodyRef,
+    pub b: BodyRef,
+    /// Unit normal from `b` towards `a`.
+    pub normal: DVec3,
+    /// World contact point (where impulses act on tumblers).
+    pub point: DVec3,
+    /// Distance between the surfaces at the start of the step (negative: overlap).
+    pub gap: f64,
+    pub restitution: f64,
+    /// Relative normal velocity before the step (negative: approaching).
+    pub approach: f64,
+    /// Effective mass along the normal.
+    pub mass: f64,
+    /// Angular velocity change of a tumbler per unit impulse along `normal`.
+    pub spin_a: DVec3,
+    pub spin_b: DVec3,
+    /// Accumulated normal impulse of the current stage.
+    pub impulse: f64,
+    /// Normal impulse of the predict stage (> 0: the contact pushed).
+    pub pushed: f64,
+    /// Coulomb friction (ball-wall contacts only) and its accumulated impulses.
+    pub friction: f64,
+    pub friction_impulse: [f64; 2],
+}
+
+impl Contact {
+    pub fn new(
+        a: BodyRef,
+        b: BodyRef,
+        normal: DVec3,
+        point: DVec3,
+        gap: f64,
+        restitution: f64,
+    ) -> Contact {
+        Contact {
+            a,
+            b,
+            normal,
+            point,
+            gap,
+            restitution,
+            approach: 0.0,
+            mass: 0.0,
+            spin_a: DVec3::ZERO,
+            spin_b: DVec3::ZERO,
+            impulse: 0.0,
+            pushed: 0.0,
+            friction: 0.0,
+            friction_impulse: [0.0; 2],
+        }
+    }
+}
+
+/// Mutable views of everything a contact can push.
+pub(crate) struct Bodies<'a> {
+    pub balls: &'a mut Balls,
+    pub tumblers: &'a mut [Tumbler],
+    /// Per tumbler: inverse inertia about its floor contact (world axes).
+    pub contact_inv: &'a [DMat3],
+}
+
+impl Bodies<'_> {
+    fn velocity(&self, body: BodyRef, point: DVec3) -> DVec3 {
+        match body {
+            BodyRef::Ball(i) => self.balls.velocity[i],
+            BodyRef::Tumbler(t, _) => self.tumblers[t].point_velocity(point),
+            BodyRef::Wall(_) => DVec3::ZERO,
+        }
+    }
+
+    /// Inverse effective mass of `body` at `point` along `n`, and the
+    /// tumbler's spin per unit impulse.
+    fn response(&self, body: BodyRef, point: DVec3, n: DVec3) -> (f64, DVec3) {
+        match body {
+            BodyRef::Ball(i) => (self.balls.inv_mass[i], DVec3::ZERO),
+            BodyRef::Tumbler(t, _) => {
+                let lever = (point - self.tumblers[t].contact_point()).cross(n);
+                let spin = self.contact_inv[t] * lever;
+                (lever.dot(spin), spin)
+            }
+            BodyRef::Wall(_) => (0.0, DVec3::ZERO),
+        }
+    }
+
+    fn push(&mut self, body: BodyRef, n: DVec3, spin: DVec3, impulse: f64) {
+        match body {
+            BodyRef::Ball(i) => self.balls.velocity[i] += n * (impulse * self.balls.inv_mass[i]),
+            BodyRef::Tumbler(t, _) => self.tumblers[t].add_rolling_spin(spin * impulse),
+            BodyRef::Wall(_) => {}
+        }
+    }
+
+    /// Relative normal velocity of a contact (negative: approaching).
+    pub fn normal_velocity(&self, c: &Contact) -> f64 {
+        (self.velocity(c.a, c.point) - self.velocity(c.b, c.point)).dot(c.normal)
+    }
+
+    /// Computes the effective mass for the bodies' current configuration.
+    pub fn prepare(&self, c: &mut Contact) {
+        let (wa, sa) = self.response(c.a, c.point, c.normal);
+        let (wb, sb) = self.response(c.b, c.point, c.normal);
+        c.mass = if wa + wb > 0.0 { 1.0 / (wa + wb) } else { 0.0 };
+        c.spin_a = sa;
+        c.spin_b = sb;
+    }
+
+    /// One Gauss-Seidel update: drive the relative normal velocity to at
+    /// least `target`, keeping the accumulated impulse non-negative.
+    fn solve_normal(&mut self, c: &mut Contact, target: f64) {
+        let vn = self.normal_velocity(c);
+        let total = (c.impulse + c.mass * (target - vn)).max(0.0);
+        let delta = total - c.impulse;
+        if delta != 0.0 {
+            c.impulse = total;
+            self.push(c.a, c.normal, c.spin_a, delta);
+            self.push(c.b, c.normal, c.spin_b, -delta);
+        }
+    }
+
+    /// Coulomb friction between a ball and a wall, at the contact point, so
+    /// that a sliding ball starts to roll.
+    fn solve_friction(&mut self, c: &mut Contact) {
+        let BodyRef::Ball(i) = c.a else { return };
+        let n = c.normal;
+        let r = self.balls.radius[i];
+        let m = self.balls.mass[i];
+        let inertia = self.balls.inertia(i);
+        let arm = -r * n;
+        let (t1, t2) = n.any_orthonormal_pair();
+        let limit = c.friction * c.impulse;
+        // Solid sphere: tangential effective mass is 2m/7.
+        let tangent_mass = 1.0 / (1.0 / m + r * r / inertia);
+        for (k, t) in [t1, t2].into_iter().enumerate() {
+            let slip = self.balls.velocity[i] + self.balls.spin[i].cross(arm);
+            let total = (c.friction_impulse[k] - tangent_mass * slip.dot(t)).clamp(-limit, limit);
+            let delta = total - c.friction_impulse[k];
+            c.friction_impulse[k] = total;
+            self.balls.velocity[i] += t * (delta / m);
+            self.balls.spin[i] += arm.cross(t * delta) / inertia;
+        }
+    }
+}
+
+/// Stage 1: speculative, non-penetrating velocities for the coming step.
+pub(crate) fn solve_predict(
+    bodies: &mut Bodies,
+    contacts: &mut [Contact],
+    iterations: usize,
+    dt: f64,
+) {
+    for c in contacts.iter_mut() {
+        bodies.prepare(c);
+        c.impulse = 0.0;
+        c.friction_impulse = [0.0; 2];
+    }
+    for _ in 0..iterations {
+        for c in contacts.iter_mut() {
+            let target = if c.gap > 0.0 { -c.gap / dt } else { 0.0 };
+            bodies.solve_normal(c, target);
+            if c.friction > 0.0 {
+                bodies.solve_friction(c);
+            }
+        }
+    }
+    for c in contacts.iter_mut() {
+        c.pushed = c.impulse;
+    }
+}
+
+/// Stage 2: contacts that pushed end bouncing or resting.
+pub(crate) fn solve_project(
+    bodies: &mut Bodies,
+    contacts: &mut [Contact],
+    iterations: usize,
+    bounce_threshold: f64,
+) {
+    for c in contacts.iter_mut() {
+        c.impulse = 0.0;
+        if c.pushed > 0.0 {
+            bodies.prepare(c);
+        }
+    }
+    for _ in 0..iterations {
+        for c in contacts.iter_mut().filter(|c| c.pushed > 0.0) {
+            let target = if c.approach < -bounce_threshold {
+                -c.restitution * c.approach
+            } else {
+                0.0
+            };
+            bodies.solve_normal(c, target);
+        }
+    }
+}

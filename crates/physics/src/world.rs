@@ -1,0 +1,899 @@
+//! The world: all bodies, and the fixed step that moves them.
+//!
+//! One step of `dt`, in order:
+//! 1. find contacts at the current positions (grid broadphase for balls);
+//! 2. half a step of gravity on the balls' velocities (the step-average velocity);
+//! 3. solve contacts on those velocities (predict stage, speculative);
+//! 4. move: balls along exact parabolas with exact wall impacts, tumblers by
+//!    integrating their grounded rolling/sliding equations;
+//! 5. resolve bounces and rests (project stage), emit events, take on colours;
+//! 6. separate any remaining overlaps, then move the fireball.
+//!
+//! Everything runs in a fixed order on `f64`, so the same configuration,
+//! seed and inputs give bit-identical states (P10).
+
+use crate::balls::{Balls, Tint};
+use crate::broadphase::Grid;
+use crate::ccd::first_impact;
+use crate::config::{Rgb, WorldConfig};
+use crate::contact::{Bodies, BodyRef, Contact, solve_predict, solve_project};
+use crate::events::{Event, EventKind};
+use crate::fireball::Fireball;
+use crate::rng::Rng;
+use crate::room::{Room, Surface};
+use crate::tumbler::{Grip, GroundedParams, Tumbler, TumblerShape};
+use glam::{DMat3, DVec3};
+
+/// Overlaps smaller than this are left alone (metres).
+const OVERLAP_SLOP: f64 = 1e-5;
+/// A ball this close to a wall is touching it (metres).
+const TOUCH_SLOP: f64 = 1e-6;
+
+/// Why a world could not be built from a configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BuildError(pub String);
+
+impl std::fmt::Display for BuildError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for BuildError {}
+
+/// Kinetic and potential energy (potential measured from the floor).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Energy {
+    pub kinetic: f64,
+    pub potential: f64,
+}
+
+impl Energy {
+    pub fn total(&self) -> f64 {
+        self.kinetic + self.potential
+    }
+}
+
+/// A tumbler hit by a pick ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pick {
+    pub tumbler: usize,
+    pub point: DVec3,
+    /// Distance along the ray.
+    pub distance: f64,
+}
+
+pub struct World {
+    config: WorldConfig,
+    room: Room,
+    shape: TumblerShape,
+    balls: Balls,
+    tumblers: Vec<Tumbler>,
+    fireball: Option<Fireball>,
+    rng: Rng,
+    time: f64,
+    steps: u64,
+    events: Vec<Event>,
+    grid: Grid,
+    contacts: Vec<Contact>,
+    contact_inv: Vec<DMat3>,
+}
+
+impl World {
+    /// Builds the scene: tumblers at their placements, balls at random
+    /// positions with random velocities drawn from `seed`.
+    pub fn new(config: WorldConfig, seed: u64) -> Result<World, BuildError> {
+        let room = Room::new(config.room.size);
+        if config.tumblers.spheres.is_empty() && !config.tumblers.placements.is_empty() {
+            return Err(BuildError("tumblers are placed but have no spheres".into()));
+        }
+        let shape = if config.tumblers.spheres.is_empty() {
+            TumblerShape::new(&[crate::config::SphereSpec {
+                height: 0.0,
+                radius: 1.0,
+                mass: 1.0,
+            }])
+        } else {
+            TumblerShape::new(&config.tumblers.spheres)
+        };
+        let tumblers: Vec<Tumbler> = config
+            .tumblers
+            .placements
+            .iter()
+            .map(|p| Tumbler::new(&shape, p, room.min.y))
+            .collect();
+        for (i, t) in tumblers.iter().enumerate() {
+            for s in 0..shape.spheres.len() {
+                let c = t.sphere_center(&shape, s);
+                if !room.contains_sphere(c, shape.spheres[s].radius, 1e-9) {
+                    return Err(BuildError(format!(
+                        "tumbler {i} at x = {}, z = {} does not fit in the room (sphere {s} sticks out)",
+                        t.center.x, t.center.z
+                    )));
+                }
+            }
+            for (j, u) in tumblers.iter().enumerate().take(i) {
+                if t.center.distance(u.center) < 2.0 * shape.bottom_radius {
+                    return Err(BuildError(format!("tumblers {j} and {i} overlap")));
+                }
+            }
+        }
+        let b = &config.balls;
+        let r_max = b.radius.max(config.fireball.radius);
+        let grid = Grid::new(room.min, room.max, 3.0 * r_max);
+        let mut world = World {
+            balls: Balls::with_uniform(b.count, b.radius, b.mass),
+            contact_inv: vec![DMat3::IDENTITY; tumblers.len()],
+            tumblers,
+            fireball: None,
+            rng: Rng::new(seed),
+            time: 0.0,
+            steps: 0,
+            events: Vec::new(),
+            grid,
+            contacts: Vec::new(),
+            room,
+            shape,
+            config,
+        };
+        world.spawn_balls()?;
+        Ok(world)
+    }
+
+    pub fn config(&self) -> &WorldConfig {
+        &self.config
+    }
+
+    pub fn room(&self) -> &Room {
+        &self.room
+    }
+
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    pub fn step_count(&self) -> u64 {
+        self.steps
+    }
+
+    pub fn balls(&self) -> &Balls {
+        &self.balls
+    }
+
+    /// Mutable access to the balls, for building scenarios.
+    pub fn balls_mut(&mut self) -> &mut Balls {
+        &mut self.balls
+    }
+
+    pub fn tumblers(&self) -> &[Tumbler] {
+        &self.tumblers
+    }
+
+    pub fn tumbler_shape(&self) -> &TumblerShape {
+        &self.shape
+    }
+
+    pub fn fireball(&self) -> Option<&Fireball> {
+        self.fireball.as_ref()
+    }
+
+    /// The colour a tint stands for.
+    pub fn tint_color(&self, tint: Tint) -> Rgb {
+        match tint {
+            Tint::White => self.config.balls.color,
+            Tint::Surface(s) => self.config.room.colors[s.index()],
+            Tint::Tumbler(t) => {
+                let colors = &self.config.tumblers.colors;
+                if colors.is_empty() {
+                    [1.0; 3]
+                } else {
+                    colors[t % colors.len()]
+                }
+            }
+        }
+    }
+
+    /// Events since the last call (P9).
+    pub fn drain_events(&mut self) -> std::vec::Drain<'_, Event> {
+        self.events.drain(..)
+    }
+
+    /// Re-initialises the balls (I6): new random positions and velocities
+    /// from the world's random sequence, every ball alive and white again.
+    pub fn reset_balls(&mut self) -> Result<(), BuildError> {
+        self.spawn_balls()
+    }
+
+    /// Launches the fireball from `from = (position, direction)`, or from the
+    /// scene's spawn point. The start is pulled inside the room if needed.
+    pub fn launch_fireball(&mut self, from: Option<(DVec3, DVec3)>) {
+        let cfg = &self.config.fireball;
+        let (pos, dir) = from.unwrap_or((cfg.spawn, cfg.direction));
+        let fallback = cfg.direction.try_normalize().unwrap_or(DVec3::NEG_Z);
+        let dir = dir.try_normalize().unwrap_or(fallback);
+        self.fireball = Some(Fireball {
+            position: self.room.clamp_sphere(pos, cfg.radius),
+            velocity: dir * cfg.speed,
+            radius: cfg.radius,
+            mass: self.config.balls.mass,
+            speed: cfg.speed,
+        });
+    }
+
+    /// Removes the fireball: it no longer exists nor collides.
+    pub fn remove_fireball(&mut self) {
+        self.fireball = None;
+    }
+
+    /// The nearest tumbler sphere hit by the ray `origin + t dir`, t >= 0.
+    pub fn pick(&self, origin: DVec3, dir: DVec3) -> Option<Pick> {
+        let dir = dir.try_normalize()?;
+        let mut best: Option<Pick> = None;
+        for (ti, t) in self.tumblers.iter().enumerate() {
+            for (si, s) in self.shape.spheres.iter().enumerate() {
+                let c = t.sphere_center(&self.shape, si);
+                let oc = origin - c;
+                let b = oc.dot(dir);
+                let disc = b * b - (oc.length_squared() - s.radius * s.radius);
+                if disc < 0.0 {
+                    continue;
+                }
+                let hit = -b - disc.sqrt();
+                let hit = if hit >= 0.0 { hit } else { -b + disc.sqrt() };
+                if hit >= 0.0 && best.is_none_or(|p| hit < p.distance) {
+                    best = Some(Pick {
+                        tumbler: ti,
+                        point: origin + dir * hit,
+                        distance: hit,
+                    });
+                }
+            }
+        }
+        best
+    }
+
+    /// Takes hold of tumbler `tumbler` at world point `point` (I5).
+    pub fn grab(&mut self, tumbler: usize, point: DVec3) {
+        if let Some(t) = self.tumblers.get_mut(tumbler) {
+            let anchor = t.orientation.inverse() * (point - t.center);
+            t.grip = Some(Grip {
+                anchor,
+                target: point,
+            });
+        }
+    }
+
+    /// Moves the hand holding a tumbler; the tumbler follows through a
+    /// spring-damper force at the grab point.
+    pub fn drag_to(&mut self, target: DVec3) {
+        for t in &mut self.tumblers {
+            if let Some(g) = &mut t.grip {
+                g.target = target;
+            }
+        }
+    }
+
+    /// Lets go: the tumbler keeps the motion it has.
+    pub fn release(&mut self) {
+        for t in &mut self.tumblers {
+            t.grip = None;
+        }
+    }
+
+    /// Index of the tumbler being held, if any.
+    pub fn grabbed(&self) -> Option<usize> {
+        self.tumblers.iter().position(|t| t.grip.is_some())
+    }
+
+    pub fn energy(&self) -> Energy {
+        let g = self.config.gravity;
+        let floor = self.room.min.y;
+        let mut e = Energy::default();
+        for i in 0..self.balls.len() {
+            if self.balls.alive[i] {
+                e.kinetic += self.balls.kinetic_energy(i);
+                e.potential += self.balls.mass[i] * g * (self.balls.position[i].y - floor);
+            }
+        }
+        for t in &self.tumblers {
+            e.kinetic += t.kinetic_energy(&self.shape);
+            e.potential += self.shape.mass * g * (t.center_of_mass().y - floor);
+        }
+        if let Some(f) = &self.fireball {
+            e.kinetic += f.kinetic_energy();
+        }
+        e
+    }
+
+    /// Places every ball at a random free spot with a random velocity.
+    ///
+    /// Spots come from a jittered lattice whose spacing leaves each ball
+    /// room to move: shuffled lattice sites give random, non-overlapping
+    /// positions in time linear in the ball count.
+    fn spawn_balls(&mut self) -> Result<(), BuildError> {
+        let n = self.balls.len();
+        if n == 0 {
+            return Ok(());
+        }
+        let r = self.config.balls.radius;
+        let lo = self.room.min + DVec3::splat(r);
+        let hi = self.room.max - DVec3::splat(r);
+        let span = hi - lo;
+        if span.min_element() < 0.0 {
+            return Err(BuildError(format!(
+                "balls of radius {r} do not fit in the room"
+            )));
+        }
+        // Aim for about four sites per ball, never closer than 2.1 radii.
+        let volume = span.x.max(0.0) * span.y.max(0.0) * span.z.max(0.0);
+        let spacing = (volume / (4.0 * n as f64)).cbrt().max(2.1 * r);
+        let dims = [
+            (span.x / spacing).floor() as usize + 1,
+            (span.y / spacing).floor() as usize + 1,
+            (span.z / spacing).floor() as usize + 1,
+        ];
+        let jitter = 0.5 * (spacing - 2.05 * r).max(0.0);
+        let clearance = self.shape.bound_radius + r + 0.5 * spacing;
+        let mut sites = Vec::with_capacity(dims[0] * dims[1] * dims[2]);
+        for z in 0..dims[2] {
+            for y in 0..dims[1] {
+                for x in 0..dims[0] {
+                    let p = lo + DVec3::new(x as f64, y as f64, z as f64) * spacing;
+                    let clear = self.tumblers.iter().all(|t| {
+                        let c = t.center
+                            + t.orientation * DVec3::new(0.0, self.shape.bound_height, 0.0);
+                        p.distance(c) > clearance
+                    });
+                    if clear && p.cmple(hi + DVec3::splat(1e-9)).all() {
+                        sites.push(p);
+                    }
+                }
+            }
+        }
+        if sites.len() < n {
+            return Err(BuildError(format!(
+                "{n} balls of radius {r} do not fit in the room beside the tumblers (room for {})",
+                sites.len()
+            )));
+        }
+        let (min_speed, max_speed) = (self.config.balls.speed_min, self.config.balls.speed_max);
+        for i in 0..n {
+            // Partial Fisher-Yates: site i is a uniform pick among the rest.
+            let k = i + (self.rng.next_u64() % (sites.len() - i) as u64) as usize;
+            sites.swap(i, k);
+            let offset = DVec3::new(
+                self.rng.range(-jitter, jitter),
+                self.rng.range(-jitter, jitter),
+                self.rng.range(-jitter, jitter),
+            );
+            let p = (sites[i] + offset).clamp(lo, hi);
+            let v = self.rng.direction() * self.rng.range(min_speed, max_speed);
+            self.balls.set(i, p, v);
+            self.balls.alive[i] = true;
+            self.balls.tint[i] = Tint::White;
+        }
+        Ok(())
+    }
+
+    /// Advances the world by one fixed time step.
+    pub fn step(&mut self) {
+        let dt = self.config.solver.dt;
+        let g = DVec3::new(0.0, -self.config.gravity, 0.0);
+        self.collect_contacts(dt);
+
+        // Step-average velocities: half a step of gravity now, half after moving.
+        for i in 0..self.balls.len() {
+            if self.balls.alive[i] {
+                self.balls.velocity[i] += 0.5 * dt * g;
+            }
+        }
+        self.update_contact_inertia();
+        let iterations = self.config.solver.iterations;
+        {
+            let mut bodies = Bodies {
+                balls: &mut self.balls,
+                tumblers: &mut self.tumblers,
+                contact_inv: &self.contact_inv,
+            };
+            solve_predict(&mut bodies, &mut self.contacts, iterations, dt);
+        }
+        self.apply_rolling_resistance(dt);
+
+        self.move_balls(dt, g);
+        self.move_tumblers(dt);
+
+        self.update_contact_inertia();
+        {
+            let mut bodies = Bodies {
+                balls: &mut self.balls,
+                tumblers: &mut self.tumblers,
+                contact_inv: &self.contact_inv,
+            };
+            solve_project(
+                &mut bodies,
+                &mut self.contacts,
+                iterations,
+                self.config.solver.bounce_threshold,
+            );
+        }
+        self.report_contacts();
+        self.separate_overlaps();
+        self.move_fireball(dt);
+
+        self.steps += 1;
+        self.time = self.steps as f64 * dt;
+    }
+
+    fn update_contact_inertia(&mut self) {
+        for (inv, t) in self.contact_inv.iter_mut().zip(&self.tumblers) {
+            *inv = t.contact_inertia_inverse(&self.shape);
+        }
+    }
+
+    /// All contacts that may act during the coming step.
+    fn collect_contacts(&mut self, dt: f64) {
+        self.contacts.clear();
+        let balls = &self.balls;
+        let room = &self.room;
+        let cfg = &self.config;
+        // A contact is kept if its gap could close within the step; speculative
+        // reach is capped at one ball radius (the grid's cell allows for that).
+        let reach_cap = cfg.balls.radius;
+        self.grid.rebuild(&balls.position, &balls.alive);
+        let contacts = &mut self.contacts;
+
+        self.grid.for_each_pair(|i, j| {
+            let d = balls.position[i] - balls.position[j];
+            let dist = d.length();
+            let gap = dist - balls.radius[i] - balls.radius[j];
+            let closing = (balls.velocity[i] - balls.velocity[j]).length() * dt;
+            if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
+                let n = d / dist;
+                let point = balls.position[j] + n * (balls.radius[j] + 0.5 * gap);
+                contacts.push(Contact::new(
+                    BodyRef::Ball(i),
+                    BodyRef::Ball(j),
+                    n,
+                    point,
+                    gap,
+                    cfg.balls.restitution,
+                ));
+            }
+        });
+
+        // Balls resting on or touching a wall. Faster impacts are found
+        // exactly while moving (see `move_balls`).
+        for i in 0..balls.len() {
+            if !balls.alive[i] {
+                continue;
+            }
+            for s in Surface::ALL {
+                let gap = room.distance(s, balls.position[i]) - balls.radius[i];
+                if gap <= TOUCH_SLOP {
+                    let n = s.inward_normal();
+                    let mut c = Contact::new(
+                        BodyRef::Ball(i),
+                        BodyRef::Wall(s),
+                        n,
+                        balls.position[i] - n * balls.radius[i],
+                        gap.min(0.0),
+                        cfg.room.restitution,
+                    );
+                    c.friction = cfg.room.friction;
+                    contacts.push(c);
+                }
+            }
+        }
+
+        // Balls against tumblers: the grid narrows to balls near the bounding
+        // sphere, then the six spheres give the contact (P7).
+        let shape = &self.shape;
+        for (ti, t) in self.tumblers.iter().enumerate() {
+            let centre = t.center + t.orientation * DVec3::new(0.0, shape.bound_height, 0.0);
+            let speed = t.point_velocity(centre).length()
+                + t.angular_velocity.length() * shape.bound_radius;
+            let reach =
+                shape.bound_radius + cfg.balls.radius + (speed * dt).min(reach_cap) + reach_cap;
+            let grid = &self.grid;
+            grid.for_each_in_box(
+                centre - DVec3::splat(reach),
+                centre + DVec3::splat(reach),
+                |bi| {
+                    if balls.position[bi].distance(centre) > reach {
+                        return;
+                    }
+                    for (si, s) in shape.spheres.iter().enumerate() {
+                        let c = t.sphere_center(shape, si);
+                        let d = balls.position[bi] - c;
+                        let dist = d.length();
+                        let gap = dist - s.radius - balls.radius[bi];
+                        let closing = (balls.velocity[bi] - t.point_velocity(c)).length() * dt;
+                        if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
+                            let n = d / dist;
+                            contacts.push(Contact::new(
+                                BodyRef::Ball(bi),
+                                BodyRef::Tumbler(ti, si),
+                                n,
+                                c + n * s.radius,
+                                gap,
+                                cfg.tumblers.restitution,
+                            ));
+                        }
+                    }
+                },
+            );
+        }
+
+        // Tumblers against each other and against the walls (the floor holds
+        // the round bottom exactly; see `tumbler`).
+        let n_tumblers = self.tumblers.len();
+        for a in 0..n_tumblers {
+            let ta = &self.tumblers[a];
+            for b in a + 1..n_tumblers {
+                let tb = &self.tumblers[b];
+                let ca = ta.center + ta.orientation * DVec3::new(0.0, shape.bound_height, 0.0);
+                let cb = tb.center + tb.orientation * DVec3::new(0.0, shape.bound_height, 0.0);
+                if ca.distance(cb) > 2.0 * shape.bound_radius + 2.0 * reach_cap {
+                    continue;
+                }
+                for (si, s) in shape.spheres.iter().enumerate() {
+                    let pa = ta.sphere_center(shape, si);
+                    for (sj, s2) in shape.spheres.iter().enumerate() {
+                        let pb = tb.sphere_center(shape, sj);
+                        let d = pa - pb;
+                        let dist = d.length();
+                        let gap = dist - s.radius - s2.radius;
+                        let closing = (ta.point_velocity(pa) - tb.point_velocity(pb)).length() * dt;
+                        if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
+                            let n = d / dist;
+                            contacts.push(Contact::new(
+                                BodyRef::Tumbler(a, si),
+                                BodyRef::Tumbler(b, sj),
+                                n,
+                                pb + n * s2.radius,
+                                gap,
+                                cfg.tumblers.restitution,
+                            ));
+                        }
+                    }
+                }
+            }
+            for (si, s) in shape.spheres.iter().enumerate() {
+                let c = ta.sphere_center(shape, si);
+                let speed = ta.point_velocity(c).length() * dt;
+                for wall in &Surface::ALL[1..] {
+                    let gap = room.distance(*wall, c) - s.radius;
+                    if gap < speed.min(reach_cap) + TOUCH_SLOP {
+                        let n = wall.inward_normal();
+                        contacts.push(Contact::new(
+                            BodyRef::Tumbler(a, si),
+                            BodyRef::Wall(*wall),
+                            n,
+                            c - n * s.radius,
+                            gap,
+                            cfg.tumblers.restitution,
+                        ));
+                    }
+                }
+            }
+        }
+
+        // Approach speeds before anything moves: what restitution acts on.
+        let bodies = Bodies {
+            balls: &mut self.balls,
+            tumblers: &mut self.tumblers,
+            contact_inv: &self.contact_inv,
+        };
+        for c in self.contacts.iter_mut() {
+            c.approach = bodies.normal_velocity(c);
+        }
+    }
+
+    /// Rolling resistance: a ball pressed on a surface loses rolling speed
+    /// in proportion to the normal impulse, until it stops.
+    fn apply_rolling_resistance(&mut self, _dt: f64) {
+        let coefficient = self.config.room.rolling_resistance;
+        for c in &self.contacts {
+            let (BodyRef::Ball(i), BodyRef::Wall(_)) = (c.a, c.b) else {
+                continue;
+            };
+            if c.pushed <= 0.0 {
+                continue;
+            }
+            let n = c.normal;
+            let v = self.balls.velocity[i];
+            let tangential = v - v.dot(n) * n;
+            let speed = tangential.length();
+            let loss = coefficient * c.pushed * self.balls.inv_mass[i];
+            let keep = if speed > loss {
+                1.0 - loss / speed
+            } else {
+                0.0
+            };
+            self.balls.velocity[i] = v.dot(n) * n + tangential * keep;
+            self.balls.spin[i] *= keep;
+        }
+    }
+
+    /// Moves every ball along its parabola, bouncing exactly off the walls.
+    fn move_balls(&mut self, dt: f64, gravity: DVec3) {
+        let room = self.room;
+        let solver = &self.config.solver;
+        let (e, mu) = (self.config.room.restitution, self.config.room.friction);
+        for i in 0..self.balls.len() {
+            if !self.balls.alive[i] {
+                continue;
+            }
+            let r = self.balls.radius[i];
+            let m = self.balls.mass[i];
+            let inertia = self.balls.inertia(i);
+            let mut x = self.balls.position[i];
+            // Instantaneous velocity at the start of the step.
+            let mut u = self.balls.velocity[i] - 0.5 * dt * gravity;
+            let mut spin = self.balls.spin[i];
+            let mut g = gravity;
+            let mut left = dt;
+            for _ in 0..8 {
+                let mut first: Option<(f64, Surface)> = None;
+                for s in Surface::ALL {
+                    let n = s.inward_normal();
+                    let d0 = room.distance(s, x) - r;
+                    if let Some(t) = first_impact(d0, n.dot(u), n.dot(g), left) {
+                        if first.is_none_or(|(best, _)| t < best) {
+                            first = Some((t, s));
+                        }
+                    }
+                }
+                let Some((t, s)) = first else {
+                    x += u * left + 0.5 * g * left * left;
+                    u += g * left;
+                    break;
+                };
+                x += u * t + 0.5 * g * t * t;
+                u += g * t;
+                left -= t;
+                let n = s.inward_normal();
+                // Sit exactly on the wall.
+                x += n * (r - room.distance(s, x));
+                let speed = -n.dot(u);
+                let normal_impulse = if speed > solver.bounce_threshold {
+                    u += (1.0 + e) * speed * n;
+                    m * (1.0 + e) * speed
+                } else {
+                    u += speed * n;
+                    if n.dot(g) < 0.0 {
+                        // Resting on it: the wall carries gravity from here on.
+                        g -= n.dot(g) * n;
+                    }
+                    m * speed
+                };
+                // Coulomb friction at the contact point, at most enough to roll.
+                let arm = -r * n;
+                let slip = u + spin.cross(arm);
+                let slip = slip - slip.dot(n) * n;
+                let slip_speed = slip.length();
+                if slip_speed > 0.0 {
+                    let j = (mu * normal_impulse).min(slip_speed / (1.0 / m + r * r / inertia));
+                    let impulse = -slip / slip_speed * j;
+                    u += impulse / m;
+                    spin += arm.cross(impulse) / inertia;
+                }
+                if speed > solver.event_threshold {
+                    self.balls.tint[i] = Tint::Surface(s);
+                    self.events.push(Event {
+                        kind: EventKind::BallSurface {
+                            ball: i,
+                            surface: s,
+                        },
+                        point: x - r * n,
+                        normal: n,
+                        speed,
+                    });
+                }
+            }
+            self.balls.position[i] = room.clamp_sphere(x, r);
+            self.balls.velocity[i] = u;
+            self.balls.spin[i] = spin;
+        }
+    }
+
+    fn move_tumblers(&mut self, dt: f64) {
+        let params = GroundedParams {
+            shape: &self.shape,
+            gravity: self.config.gravity,
+            friction: self.config.tumblers.floor_friction,
+            damping: self.config.tumblers.damping,
+            grab: &self.config.grab,
+        };
+        for t in &mut self.tumblers {
+            t.choose_mode(&params);
+            t.integrate(&params, dt);
+        }
+    }
+
+    /// Events and colours from the contacts that pushed this step.
+    fn report_contacts(&mut self) {
+        let threshold = self.config.solver.event_threshold;
+        for c in &self.contacts {
+            if c.pushed <= 0.0 || -c.approach <= threshold {
+                continue;
+            }
+            let kind = match (c.a, c.b) {
+                (BodyRef::Ball(i), BodyRef::Ball(j)) => EventKind::BallBall { a: i, b: j },
+                (BodyRef::Ball(i), BodyRef::Wall(s)) => {
+                    self.balls.tint[i] = Tint::Surface(s);
+                    EventKind::BallSurface {
+                        ball: i,
+                        surface: s,
+                    }
+                }
+                (BodyRef::Ball(i), BodyRef::Tumbler(t, s)) => {
+                    self.balls.tint[i] = Tint::Tumbler(t);
+                    EventKind::BallTumbler {
+                        ball: i,
+                        tumbler: t,
+                        sphere: s,
+                    }
+                }
+                _ => continue,
+            };
+            self.events.push(Event {
+                kind,
+                point: c.point,
+                normal: c.normal,
+                speed: -c.approach,
+            });
+        }
+    }
+
+    /// Pushes apart bodies that still overlap: balls along the line of
+    /// centres, weighted by mass; tumblers only sideways over the floor.
+    fn separate_overlaps(&mut self) {
+        let shape = &self.shape;
+        for c in &self.contacts {
+            match (c.a, c.b) {
+                (BodyRef::Ball(i), BodyRef::Ball(j)) => {
+                    let d = self.balls.position[i] - self.balls.position[j];
+                    let dist = d.length();
+                    let overlap = self.balls.radius[i] + self.balls.radius[j] - dist;
+                    if overlap > OVERLAP_SLOP && dist > 0.0 {
+                        let n = d / dist;
+                        let (wi, wj) = (self.balls.inv_mass[i], self.balls.inv_mass[j]);
+                        let share = overlap / (wi + wj);
+                        self.balls.position[i] += n * (share * wi);
+                        self.balls.position[j] -= n * (share * wj);
+                    }
+                }
+                (BodyRef::Ball(i), BodyRef::Tumbler(t, s)) => {
+                    let centre = self.tumblers[t].sphere_center(shape, s);
+                    let d = self.balls.position[i] - centre;
+                    let dist = d.length();
+                    let overlap = self.balls.radius[i] + shape.spheres[s].radius - dist;
+                    if overlap > OVERLAP_SLOP && dist > 0.0 {
+                        self.balls.position[i] += d / dist * overlap;
+                    }
+                }
+                (BodyRef::Tumbler(a, sa), BodyRef::Tumbler(b, sb)) => {
+                    let d = self.tumblers[a].sphere_center(shape, sa)
+                        - self.tumblers[b].sphere_center(shape, sb);
+                    let flat = DVec3::new(d.x, 0.0, d.z);
+                    let overlap = shape.spheres[sa].radius + shape.spheres[sb].radius - d.length();
+                    if overlap > OVERLAP_SLOP && flat.length() > 1e-9 {
+                        let push = flat.normalize() * (0.5 * overlap * d.length() / flat.length());
+                        self.tumblers[a].center += push;
+                        self.tumblers[b].center -= push;
+                    }
+                }
+                _ => {}
+            }
+        }
+        for t in &mut self.tumblers {
+            for (si, s) in shape.spheres.iter().enumerate() {
+                let c = t.sphere_center(shape, si);
+                let inside = self.room.clamp_sphere(c, s.radius);
+                let shift = DVec3::new(inside.x - c.x, 0.0, inside.z - c.z);
+                t.center += shift;
+            }
+        }
+        for i in 0..self.balls.len() {
+            self.balls.position[i] = self
+                .room
+                .clamp_sphere(self.balls.position[i], self.balls.radius[i]);
+        }
+    }
+
+    /// Moves the fireball in substeps short enough that it cannot pass
+    /// through a ball, bouncing off walls, tumblers and balls at constant speed.
+    fn move_fireball(&mut self, dt: f64) {
+        let Some(mut f) = self.fireball.take() else {
+            return;
+        };
+        let min_radius = f.radius.min(self.config.balls.radius);
+        let substeps = ((f.speed * dt) / (0.5 * min_radius)).ceil().max(1.0) as usize;
+        let h = dt / substeps as f64;
+        let shape = &self.shape;
+        for _ in 0..substeps {
+            f.position += f.velocity * h;
+            for s in Surface::ALL {
+                let n = s.inward_normal();
+                let d = self.room.distance(s, f.position) - f.radius;
+                if d < 0.0 {
+                    f.position += n * -d;
+                    let vn = f.velocity.dot(n);
+                    if vn < 0.0 {
+                        f.velocity -= 2.0 * vn * n;
+                        self.events.push(Event {
+                            kind: EventKind::FireballSurface { surface: s },
+                            point: f.position - n * f.radius,
+                            normal: n,
+                            speed: -vn,
+                        });
+                    }
+                }
+            }
+            for i in 0..self.balls.len() {
+                if !self.balls.alive[i] {
+                    continue;
+                }
+                let d = f.position - self.balls.position[i];
+                let dist = d.length();
+                let overlap = f.radius + self.balls.radius[i] - dist;
+                if overlap <= 0.0 || dist == 0.0 {
+                    continue;
+                }
+                let n = d / dist;
+                f.position += n * overlap;
+                let vn = (f.velocity - self.balls.velocity[i]).dot(n);
+                if vn < 0.0 {
+                    // An elastic impulse between equal partners, then the
+                    // fireball resumes its constant speed.
+                    let j = -2.0 * vn / (1.0 / f.mass + self.balls.inv_mass[i]);
+                    self.balls.velocity[i] -= n * (j * self.balls.inv_mass[i]);
+                    f.velocity += n * (j / f.mass);
+                    f.restore_speed(n);
+                    self.events.push(Event {
+                        kind: EventKind::FireballBall { ball: i },
+                        point: self.balls.position[i] + n * self.balls.radius[i],
+                        normal: n,
+                        speed: -vn,
+                    });
+                }
+            }
+            for (ti, t) in self.tumblers.iter_mut().enumerate() {
+                for (si, s) in shape.spheres.iter().enumerate() {
+                    let c = t.sphere_center(shape, si);
+                    let d = f.position - c;
+                    let dist = d.length();
+                    let overlap = f.radius + s.radius - dist;
+                    if overlap <= 0.0 || dist == 0.0 {
+                        continue;
+                    }
+                    let n = d / dist;
+                    f.position += n * overlap;
+                    let point = c + n * s.radius;
+                    let vn = (f.velocity - t.point_velocity(point)).dot(n);
+                    if vn < 0.0 {
+                        let inv = t.contact_inertia_inverse(shape);
+                        let lever = (point - t.contact_point()).cross(n);
+                        let w = lever.dot(inv * lever);
+                        let j = -2.0 * vn / (1.0 / f.mass + w);
+                        t.apply_impulse(&inv, point, -n * j);
+                        f.velocity += n * (j / f.mass);
+                        f.restore_speed(n);
+                        self.events.push(Event {
+                            kind: EventKind::FireballTumbler {
+                                tumbler: ti,
+                                sphere: si,
+                            },
+                            point,
+                            normal: n,
+                            speed: -vn,
+                        });
+                    }
+                }
+            }
+            f.position = self.room.clamp_sphere(f.position, f.radius);
+        }
+        self.fireball = Some(f);
+    }
+}
