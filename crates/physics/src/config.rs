@@ -174,32 +174,32 @@ impl Default for WorldConfig {
                     SphereSpec {
                         height: 0.0,
                         radius: 0.30,
-                        mass: 2.0,
+                        mass: 1.0,
                     }, // round bottom
                     SphereSpec {
-                        height: -0.17,
-                        radius: 0.12,
-                        mass: 4.0,
+                        height: -0.19,
+                        radius: 0.10,
+                        mass: 7.0,
                     }, // ballast
                     SphereSpec {
-                        height: 0.30,
-                        radius: 0.24,
-                        mass: 0.4,
+                        height: 0.28,
+                        radius: 0.22,
+                        mass: 0.25,
                     }, // belly
                     SphereSpec {
-                        height: 0.50,
-                        radius: 0.19,
-                        mass: 0.25,
+                        height: 0.46,
+                        radius: 0.18,
+                        mass: 0.15,
                     }, // chest
                     SphereSpec {
-                        height: 0.68,
-                        radius: 0.17,
-                        mass: 0.2,
+                        height: 0.62,
+                        radius: 0.16,
+                        mass: 0.12,
                     }, // head
                     SphereSpec {
-                        height: 0.86,
-                        radius: 0.06,
-                        mass: 0.05,
+                        height: 0.78,
+                        radius: 0.05,
+                        mass: 0.02,
                     }, // top knot
                 ],
                 placements,

@@ -10,12 +10,16 @@
 //!    end with the bounce their restitution asks for (measured from the
 //!    approach speed before the step), or at rest.
 //!
+//! Contacts with a tumbler bounce in stage 1 already, when touching: a
+//! tumbler's response to an impulse changes as it turns, and splitting one
+//! impact over two configurations could create energy.
+//!
 //! Every impulse is along the contact normal with a non-negative magnitude,
 //! so neither stage can add energy.
 
 use crate::balls::Balls;
 use crate::room::Surface;
-use crate::tumbler::Tumbler;
+use crate::tumbler::{Response, Tumbler, TumblerShape};
 use glam::{DMat3, DVec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -39,15 +43,19 @@ pub(crate) struct Contact {
     pub restitution: f64,
     /// Relative normal velocity before the step (negative: approaching).
     pub approach: f64,
+    /// How much gravity's half step changed the relative normal velocity.
+    pub kick: f64,
     /// Effective mass along the normal.
     pub mass: f64,
-    /// Angular velocity change of a tumbler per unit impulse along `normal`.
-    pub spin_a: DVec3,
-    pub spin_b: DVec3,
+    /// How a tumbler's velocities change per unit impulse along `normal`.
+    pub response_a: Response,
+    pub response_b: Response,
     /// Accumulated normal impulse of the current stage.
     pub impulse: f64,
     /// Normal impulse of the predict stage (> 0: the contact pushed).
     pub pushed: f64,
+    /// Whether the project stage bounces this contact.
+    pub bounce: bool,
     /// Coulomb friction (ball-wall contacts only) and its accumulated impulses.
     pub friction: f64,
     pub friction_impulse: [f64; 2],
@@ -70,14 +78,22 @@ impl Contact {
             gap,
             restitution,
             approach: 0.0,
+            kick: 0.0,
             mass: 0.0,
-            spin_a: DVec3::ZERO,
-            spin_b: DVec3::ZERO,
+            response_a: Response::default(),
+            response_b: Response::default(),
             impulse: 0.0,
             pushed: 0.0,
+            bounce: false,
             friction: 0.0,
             friction_impulse: [0.0; 2],
         }
+    }
+}
+
+impl Contact {
+    pub fn involves_tumbler(&self) -> bool {
+        matches!(self.a, BodyRef::Tumbler(..)) || matches!(self.b, BodyRef::Tumbler(..))
     }
 }
 
@@ -85,8 +101,10 @@ impl Contact {
 pub(crate) struct Bodies<'a> {
     pub balls: &'a mut Balls,
     pub tumblers: &'a mut [Tumbler],
+    pub shape: &'a TumblerShape,
     /// Per tumbler: inverse inertia about its floor contact (world axes).
     pub contact_inv: &'a [DMat3],
+    pub floor_friction: f64,
 }
 
 impl Bodies<'_> {
@@ -98,24 +116,32 @@ impl Bodies<'_> {
         }
     }
 
-    /// Inverse effective mass of `body` at `point` along `n`, and the
-    /// tumbler's spin per unit impulse.
-    fn response(&self, body: BodyRef, point: DVec3, n: DVec3) -> (f64, DVec3) {
+    /// Inverse effective mass of `body` at `point` along `n`, and how a
+    /// tumbler's velocities respond per unit impulse.
+    fn response(&self, body: BodyRef, point: DVec3, n: DVec3) -> (f64, Response) {
         match body {
-            BodyRef::Ball(i) => (self.balls.inv_mass[i], DVec3::ZERO),
+            BodyRef::Ball(i) => (self.balls.inv_mass[i], Response::default()),
             BodyRef::Tumbler(t, _) => {
-                let lever = (point - self.tumblers[t].contact_point()).cross(n);
-                let spin = self.contact_inv[t] * lever;
-                (lever.dot(spin), spin)
+                let tumbler = &self.tumblers[t];
+                let r = tumbler.impulse_response(
+                    self.shape,
+                    &self.contact_inv[t],
+                    self.floor_friction,
+                    point,
+                    n,
+                );
+                let dv =
+                    r.center_velocity + r.angular_velocity.cross(point - tumbler.bottom_center());
+                (dv.dot(n), r)
             }
-            BodyRef::Wall(_) => (0.0, DVec3::ZERO),
+            BodyRef::Wall(_) => (0.0, Response::default()),
         }
     }
 
-    fn push(&mut self, body: BodyRef, n: DVec3, spin: DVec3, impulse: f64) {
+    fn push(&mut self, body: BodyRef, n: DVec3, response: &Response, impulse: f64) {
         match body {
             BodyRef::Ball(i) => self.balls.velocity[i] += n * (impulse * self.balls.inv_mass[i]),
-            BodyRef::Tumbler(t, _) => self.tumblers[t].add_rolling_spin(spin * impulse),
+            BodyRef::Tumbler(t, _) => self.tumblers[t].apply_response(response, impulse),
             BodyRef::Wall(_) => {}
         }
     }
@@ -130,8 +156,8 @@ impl Bodies<'_> {
         let (wa, sa) = self.response(c.a, c.point, c.normal);
         let (wb, sb) = self.response(c.b, c.point, c.normal);
         c.mass = if wa + wb > 0.0 { 1.0 / (wa + wb) } else { 0.0 };
-        c.spin_a = sa;
-        c.spin_b = sb;
+        c.response_a = sa;
+        c.response_b = sb;
     }
 
     /// One Gauss-Seidel update: drive the relative normal velocity to at
@@ -142,8 +168,8 @@ impl Bodies<'_> {
         let delta = total - c.impulse;
         if delta != 0.0 {
             c.impulse = total;
-            self.push(c.a, c.normal, c.spin_a, delta);
-            self.push(c.b, c.normal, c.spin_b, -delta);
+            self.push(c.a, c.normal, &c.response_a, delta);
+            self.push(c.b, c.normal, &c.response_b, -delta);
         }
     }
 
@@ -177,15 +203,30 @@ pub(crate) fn solve_predict(
     contacts: &mut [Contact],
     iterations: usize,
     dt: f64,
+    bounce_threshold: f64,
 ) {
     for c in contacts.iter_mut() {
         bodies.prepare(c);
         c.impulse = 0.0;
         c.friction_impulse = [0.0; 2];
+        // Gravity's half step, which the contact's two sides may not share.
+        c.kick = bodies.normal_velocity(c) - c.approach;
     }
     for _ in 0..iterations {
         for c in contacts.iter_mut() {
-            let target = if c.gap > 0.0 { -c.gap / dt } else { 0.0 };
+            let target = if c.involves_tumbler()
+                && c.approach < -bounce_threshold
+                && c.gap + c.approach * dt <= 0.0
+            {
+                // A tumbler's response changes as it turns during the step, so
+                // an impact due within the step bounces here, in one
+                // consistent stage, at its full approach speed.
+                c.kick - c.restitution * c.approach
+            } else if c.gap > 0.0 {
+                -c.gap / dt
+            } else {
+                0.0
+            };
             bodies.solve_normal(c, target);
             if c.friction > 0.0 {
                 bodies.solve_friction(c);
@@ -198,21 +239,42 @@ pub(crate) fn solve_predict(
 }
 
 /// Stage 2: contacts that pushed end bouncing or resting.
+///
+/// Only a ball's single impact of the step bounces here, to the speed its
+/// restitution gives the approach measured before the step. A ball that also
+/// bounced off a wall or a tumbler, or that meets several bodies at once, has
+/// that approach spent or shared; bouncing each of its contacts to its own
+/// measured speed could create energy, so those contacts only stop the
+/// approach. `impacts` counts, per ball, the impacts of the step so far.
 pub(crate) fn solve_project(
     bodies: &mut Bodies,
     contacts: &mut [Contact],
     iterations: usize,
     bounce_threshold: f64,
+    impacts: &mut [u8],
 ) {
+    let is_impact = |c: &Contact| c.pushed > 0.0 && c.approach < -bounce_threshold;
+    for c in contacts
+        .iter()
+        .filter(|c| is_impact(c) && !c.involves_tumbler())
+    {
+        for body in [c.a, c.b] {
+            if let BodyRef::Ball(i) = body {
+                impacts[i] = impacts[i].saturating_add(1);
+            }
+        }
+    }
+    let single = |b: BodyRef| !matches!(b, BodyRef::Ball(i) if impacts[i] != 1);
     for c in contacts.iter_mut() {
         c.impulse = 0.0;
+        c.bounce = is_impact(c) && !c.involves_tumbler() && single(c.a) && single(c.b);
         if c.pushed > 0.0 {
             bodies.prepare(c);
         }
     }
     for _ in 0..iterations {
         for c in contacts.iter_mut().filter(|c| c.pushed > 0.0) {
-            let target = if c.approach < -bounce_threshold {
+            let target = if c.bounce {
                 -c.restitution * c.approach
             } else {
                 0.0

@@ -105,6 +105,13 @@ pub(crate) enum FloorMode {
     Sliding(DVec3),
 }
 
+/// Velocity change of a tumbler per unit impulse.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Response {
+    pub angular_velocity: DVec3,
+    pub center_velocity: DVec3,
+}
+
 /// A spring-damper "hand" holding a tumbler at a point fixed in its body.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grip {
@@ -227,17 +234,49 @@ impl Tumbler {
         (self.world_inertia(shape) + shape.mass * shift).inverse()
     }
 
-    /// Applies an impulse `impulse` at world point `point`, resolved with the
-    /// bottom held by the floor (the floor's reaction is impulsive too).
-    pub(crate) fn apply_impulse(&mut self, contact_inv: &DMat3, point: DVec3, impulse: DVec3) {
-        let dw = *contact_inv * (point - self.contact_point()).cross(impulse);
-        self.add_rolling_spin(dw);
+    /// How the velocities change per unit impulse along `n` at `point`.
+    ///
+    /// Rolling, the floor's reaction is impulsive too and holds the contact
+    /// point: the tumbler turns about it, `I_P dw = (point - P) x n`.
+    /// Sliding, the floor pushes only up, with kinetic friction against the
+    /// slip, as in [`grounded_solve`].
+    pub(crate) fn impulse_response(
+        &self,
+        shape: &TumblerShape,
+        contact_inv: &DMat3,
+        friction: f64,
+        point: DVec3,
+        n: DVec3,
+    ) -> Response {
+        match self.mode {
+            FloorMode::Rolling => {
+                let dw = *contact_inv * (point - self.contact_point()).cross(n);
+                Response {
+                    angular_velocity: dw,
+                    center_velocity: self.bottom_radius * dw.cross(DVec3::Y),
+                }
+            }
+            FloorMode::Sliding(_) => {
+                let g = self.center_of_mass();
+                let sol = grounded_solve(
+                    shape,
+                    self.orientation,
+                    self.mode,
+                    friction,
+                    n,
+                    (point - g).cross(n),
+                );
+                Response {
+                    angular_velocity: sol.dw,
+                    center_velocity: sol.planar,
+                }
+            }
+        }
     }
 
-    /// Adds angular velocity together with the matching rolling velocity.
-    pub(crate) fn add_rolling_spin(&mut self, dw: DVec3) {
-        self.angular_velocity += dw;
-        self.center_velocity += self.bottom_radius * dw.cross(DVec3::Y);
+    pub(crate) fn apply_response(&mut self, r: &Response, impulse: f64) {
+        self.angular_velocity += r.angular_velocity * impulse;
+        self.center_velocity += r.center_velocity * impulse;
     }
 
     pub fn kinetic_energy(&self, shape: &TumblerShape) -> f64 {

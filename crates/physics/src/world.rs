@@ -77,6 +77,8 @@ pub struct World {
     grid: Grid,
     contacts: Vec<Contact>,
     contact_inv: Vec<DMat3>,
+    /// Per ball: impacts during the current step (see `solve_project`).
+    impacts: Vec<u8>,
 }
 
 impl World {
@@ -132,6 +134,7 @@ impl World {
             events: Vec::new(),
             grid,
             contacts: Vec::new(),
+            impacts: vec![0; b.count],
             room,
             shape,
             config,
@@ -393,27 +396,46 @@ impl World {
             let mut bodies = Bodies {
                 balls: &mut self.balls,
                 tumblers: &mut self.tumblers,
+                shape: &self.shape,
                 contact_inv: &self.contact_inv,
+                floor_friction: self.config.tumblers.floor_friction,
             };
-            solve_predict(&mut bodies, &mut self.contacts, iterations, dt);
+            solve_predict(
+                &mut bodies,
+                &mut self.contacts,
+                iterations,
+                dt,
+                self.config.solver.bounce_threshold,
+            );
         }
         self.apply_rolling_resistance(dt);
 
         self.move_balls(dt, g);
         self.move_tumblers(dt);
+        let threshold = self.config.solver.bounce_threshold;
+        for c in &self.contacts {
+            if let BodyRef::Ball(i) = c.a {
+                if c.involves_tumbler() && c.pushed > 0.0 && c.approach < -threshold {
+                    self.impacts[i] = self.impacts[i].saturating_add(1);
+                }
+            }
+        }
 
         self.update_contact_inertia();
         {
             let mut bodies = Bodies {
                 balls: &mut self.balls,
                 tumblers: &mut self.tumblers,
+                shape: &self.shape,
                 contact_inv: &self.contact_inv,
+                floor_friction: self.config.tumblers.floor_friction,
             };
             solve_project(
                 &mut bodies,
                 &mut self.contacts,
                 iterations,
                 self.config.solver.bounce_threshold,
+                &mut self.impacts,
             );
         }
         self.report_contacts();
@@ -446,9 +468,13 @@ impl World {
             let d = balls.position[i] - balls.position[j];
             let dist = d.length();
             let gap = dist - balls.radius[i] - balls.radius[j];
-            let closing = (balls.velocity[i] - balls.velocity[j]).length() * dt;
+            let relative = balls.velocity[i] - balls.velocity[j];
+            let closing = relative.length() * dt;
             if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
-                let n = d / dist;
+                // Gravity moves both alike, so within the step they close
+                // along a straight line: take the normal at the moment of impact.
+                let (n, gap) = impact_normal(d, relative, balls.radius[i] + balls.radius[j], dt)
+                    .unwrap_or((d / dist, gap));
                 let point = balls.position[j] + n * (balls.radius[j] + 0.5 * gap);
                 contacts.push(Contact::new(
                     BodyRef::Ball(i),
@@ -582,7 +608,9 @@ impl World {
         let bodies = Bodies {
             balls: &mut self.balls,
             tumblers: &mut self.tumblers,
+            shape: &self.shape,
             contact_inv: &self.contact_inv,
+            floor_friction: self.config.tumblers.floor_friction,
         };
         for c in self.contacts.iter_mut() {
             c.approach = bodies.normal_velocity(c);
@@ -621,6 +649,7 @@ impl World {
         let solver = &self.config.solver;
         let (e, mu) = (self.config.room.restitution, self.config.room.friction);
         for i in 0..self.balls.len() {
+            self.impacts[i] = 0;
             if !self.balls.alive[i] {
                 continue;
             }
@@ -656,6 +685,7 @@ impl World {
                 // Sit exactly on the wall.
                 x += n * (r - room.distance(s, x));
                 let speed = -n.dot(u);
+                self.impacts[i] = self.impacts[i].saturating_add(1);
                 let normal_impulse = if speed > solver.bounce_threshold {
                     u += (1.0 + e) * speed * n;
                     m * (1.0 + e) * speed
@@ -812,6 +842,7 @@ impl World {
         let substeps = ((f.speed * dt) / (0.5 * min_radius)).ceil().max(1.0) as usize;
         let h = dt / substeps as f64;
         let shape = &self.shape;
+        let friction = self.config.tumblers.floor_friction;
         for _ in 0..substeps {
             f.position += f.velocity * h;
             for s in Surface::ALL {
@@ -874,10 +905,12 @@ impl World {
                     let vn = (f.velocity - t.point_velocity(point)).dot(n);
                     if vn < 0.0 {
                         let inv = t.contact_inertia_inverse(shape);
-                        let lever = (point - t.contact_point()).cross(n);
-                        let w = lever.dot(inv * lever);
+                        // Response to an impulse along -n (pushing the tumbler away).
+                        let r = t.impulse_response(shape, &inv, friction, point, -n);
+                        let w = (r.center_velocity + r.angular_velocity.cross(point - t.center))
+                            .dot(-n);
                         let j = -2.0 * vn / (1.0 / f.mass + w);
-                        t.apply_impulse(&inv, point, -n * j);
+                        t.apply_response(&r, j);
                         f.velocity += n * (j / f.mass);
                         f.restore_speed(n);
                         self.events.push(Event {
@@ -896,4 +929,25 @@ impl World {
         }
         self.fireball = Some(f);
     }
+}
+
+/// For two spheres whose centres differ by `d + v t`, the line of centres at
+/// first touch within `horizon`, and the gap left along it at t = 0.
+fn impact_normal(d: DVec3, v: DVec3, reach: f64, horizon: f64) -> Option<(DVec3, f64)> {
+    let a = v.length_squared();
+    let b = d.dot(v);
+    let c = d.length_squared() - reach * reach;
+    if c <= 0.0 || b >= 0.0 || a == 0.0 {
+        return None;
+    }
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let t = c / (-b + disc.sqrt());
+    if t > horizon {
+        return None;
+    }
+    let n = (d + v * t).normalize();
+    Some((n, -v.dot(n) * t))
 }

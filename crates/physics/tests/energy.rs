@@ -1,0 +1,74 @@
+//! Energy never grows (P1, P4): contacts, bounces, friction and damping can
+//! only take energy out. The fireball and the hand feed energy in by design,
+//! so they stay out of these scenes.
+
+mod common;
+
+use common::build;
+use rolypoly_physics::{World, WorldConfig};
+
+/// Steps `w` for `seconds` and returns the largest relative growth of the
+/// total energy over a single step.
+fn worst_step_growth(w: &mut World, seconds: f64) -> f64 {
+    let mut worst = f64::NEG_INFINITY;
+    let mut before = w.energy().total();
+    let steps = (seconds / w.config().solver.dt) as usize;
+    for _ in 0..steps {
+        w.step();
+        let after = w.energy().total();
+        assert!(after.is_finite());
+        worst = worst.max((after - before) / before.abs().max(1e-12));
+        before = after;
+    }
+    worst
+}
+
+#[test]
+fn default_scene_never_gains_energy() {
+    for seed in [1, 2, 3] {
+        let mut w = build(WorldConfig::default(), seed);
+        let growth = worst_step_growth(&mut w, 20.0);
+        assert!(
+            growth <= 1e-9,
+            "seed {seed}: energy grew by {growth:e} in one step"
+        );
+    }
+}
+
+#[test]
+fn perfectly_elastic_scene_with_gravity_never_gains_energy() {
+    let mut cfg = WorldConfig::default();
+    cfg.balls.count = 120;
+    cfg.balls.restitution = 1.0;
+    cfg.room.restitution = 1.0;
+    cfg.tumblers.restitution = 1.0;
+    cfg.tumblers.damping = 0.0;
+    let mut w = build(cfg, 4);
+    let growth = worst_step_growth(&mut w, 10.0);
+    assert!(growth <= 1e-9, "energy grew by {growth:e} in one step");
+}
+
+#[test]
+fn elastic_weightless_frictionless_scene_keeps_its_energy() {
+    let mut cfg = WorldConfig::default();
+    cfg.gravity = 0.0;
+    cfg.balls.count = 30;
+    cfg.balls.restitution = 1.0;
+    cfg.room.restitution = 1.0;
+    cfg.room.friction = 0.0;
+    cfg.room.rolling_resistance = 0.0;
+    cfg.tumblers.restitution = 1.0;
+    cfg.tumblers.damping = 0.0;
+    cfg.tumblers.floor_friction = 0.0;
+    let mut w = build(cfg, 5);
+    let e0 = w.energy().total();
+    let growth = worst_step_growth(&mut w, 10.0);
+    let e1 = w.energy().total();
+    assert!(growth <= 1e-9, "energy grew by {growth:e} in one step");
+    let change = (e1 - e0).abs() / e0;
+    assert!(
+        change < 1e-3,
+        "energy changed by {:.4}% over 10 s",
+        100.0 * change
+    );
+}
