@@ -221,9 +221,9 @@ impl Default for WorldConfig {
                 direction: DVec3::new(0.3, -0.1, -1.0),
             },
             grab: GrabConfig {
-                stiffness: 400.0,
-                damping: 40.0,
-                max_force: 600.0,
+                stiffness: 250.0,
+                damping: 70.0,
+                max_force: 100.0,
             },
             solver: SolverConfig {
                 dt: 1.0 / 120.0,

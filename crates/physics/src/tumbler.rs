@@ -18,6 +18,11 @@
 //! an impulse `J` at a point `Q` turns the tumbler about its contact point,
 //! `I_P dw = (Q - P) x J`, where `I_P` is the inertia about `P` (the report's
 //! "torque about the contact point").
+//!
+//! The bottom never lifts off: where the floor would have to pull it down
+//! (a violent spin, a hard knock from below), the floor holds it without
+//! friction instead. Tumblers are heavy and low, so this is rare; it keeps
+//! the motion energy-consistent.
 
 use crate::config::{SphereSpec, TumblerPlacement};
 use glam::{DMat3, DQuat, DVec3};
@@ -344,31 +349,46 @@ pub(crate) fn grounded_solve(
         FloorMode::Rolling => skew(r) * -m,
         FloorMode::Sliding(_) => skew(d) * -m,
     };
-    let (normal_dir, c4, c5) = match mode {
-        FloorMode::Rolling => (DVec3::Y, DVec3::X, DVec3::Z),
-        FloorMode::Sliding(s) => (DVec3::Y - friction * s, DVec3::X, DVec3::Z),
+    let (c4, c5) = (DVec3::X, DVec3::Z);
+    let normal_dir = match mode {
+        FloorMode::Rolling => DVec3::Y,
+        FloorMode::Sliding(s) => DVec3::Y - friction * s,
     };
-    for row in 0..3 {
-        for col in 0..3 {
-            a[row][col] = lin_w.col(col)[row];
-            a[row + 3][col] = inertia.col(col)[row];
-        }
-        a[row][3] = -normal_dir[row];
-        a[row + 3][3] = -rho.cross(normal_dir)[row];
-        match mode {
-            FloorMode::Rolling => {
-                a[row][4] = -c4[row];
-                a[row][5] = -c5[row];
-                a[row + 3][4] = -rho.cross(c4)[row];
-                a[row + 3][5] = -rho.cross(c5)[row];
-            }
-            FloorMode::Sliding(_) => {
-                a[row][4] = m * c4[row];
-                a[row][5] = m * c5[row];
-            }
+    // Columns: dw (3), N, then friction or the centre's planar acceleration.
+    let (c4_lin, c5_lin, c4_ang, c5_ang) = match mode {
+        FloorMode::Rolling => (-c4, -c5, -rho.cross(c4), -rho.cross(c5)),
+        FloorMode::Sliding(_) => (m * c4, m * c5, DVec3::ZERO, DVec3::ZERO),
+    };
+    let columns_lin = [
+        lin_w.x_axis,
+        lin_w.y_axis,
+        lin_w.z_axis,
+        -normal_dir,
+        c4_lin,
+        c5_lin,
+    ];
+    let columns_ang = [
+        inertia.x_axis,
+        inertia.y_axis,
+        inertia.z_axis,
+        -rho.cross(normal_dir),
+        c4_ang,
+        c5_ang,
+    ];
+    for (col, (l, g)) in columns_lin.iter().zip(&columns_ang).enumerate() {
+        for row in 0..3 {
+            a[row][col] = l[row];
+            a[row + 3][col] = g[row];
         }
     }
     let x = solve6(a, [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z]);
+    if let FloorMode::Sliding(_) = mode {
+        if x[3] < 0.0 && friction > 0.0 {
+            // The floor would have to pull down: it cannot, so there is no
+            // friction either (the bottom stays on the floor; see module doc).
+            return grounded_solve(shape, orientation, mode, 0.0, lin, ang);
+        }
+    }
     GroundedSolution {
         dw: DVec3::new(x[0], x[1], x[2]),
         normal: x[3],
@@ -385,24 +405,26 @@ fn solve6(mut a: [[f64; 6]; 6], mut b: [f64; 6]) -> [f64; 6] {
             .unwrap_or(col);
         a.swap(col, pivot);
         b.swap(col, pivot);
-        let p = a[col][col];
-        for row in col + 1..6 {
-            let f = a[row][col] / p;
+        let (top, rest) = a.split_at_mut(col + 1);
+        let pivot_row = &top[col];
+        for (offset, row) in rest.iter_mut().enumerate() {
+            let f = row[col] / pivot_row[col];
             if f != 0.0 {
-                for k in col..6 {
-                    a[row][k] -= f * a[col][k];
+                for (x, p) in row[col..].iter_mut().zip(&pivot_row[col..]) {
+                    *x -= f * p;
                 }
-                b[row] -= f * b[col];
+                b[col + 1 + offset] -= f * b[col];
             }
         }
     }
     let mut x = [0.0; 6];
     for row in (0..6).rev() {
-        let mut s = b[row];
-        for k in row + 1..6 {
-            s -= a[row][k] * x[k];
-        }
-        x[row] = s / a[row][row];
+        let known: f64 = a[row][row + 1..]
+            .iter()
+            .zip(&x[row + 1..])
+            .map(|(c, v)| c * v)
+            .sum();
+        x[row] = (b[row] - known) / a[row][row];
     }
     x
 }
@@ -647,5 +669,31 @@ mod tests {
             sol.dw,
             closed
         );
+    }
+
+    #[test]
+    fn a_sliding_tumbler_trips_forward_and_comes_to_roll() {
+        // Friction acts at the floor, below the centre of mass: it slows the
+        // bottom and pitches the top forward, until the slip is gone.
+        let cfg = WorldConfig::default();
+        let shape = TumblerShape::new(&cfg.tumblers.spheres);
+        let mut t = Tumbler::new(&shape, &cfg.tumblers.placements[0], 0.0);
+        t.center_velocity = DVec3::new(1.0, 0.0, 0.0);
+        t.mode = FloorMode::Sliding(DVec3::X);
+        let p = params(&shape, &cfg.grab, 0.0);
+        let momentum0 = shape.mass * t.linear_velocity().x;
+        for _ in 0..6 {
+            t.choose_mode(&p);
+            t.integrate(&p, 1.0 / 120.0);
+        }
+        assert!(t.axis().x > 0.0, "leaned back: {}", t.axis());
+        assert!(t.contact_velocity().x < 1.0);
+        assert!(shape.mass * t.linear_velocity().x < momentum0);
+        for _ in 0..240 {
+            t.choose_mode(&p);
+            t.integrate(&p, 1.0 / 120.0);
+        }
+        assert!(!t.sliding());
+        assert!(t.contact_velocity().length() < 1e-9);
     }
 }

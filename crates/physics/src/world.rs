@@ -22,7 +22,7 @@ use crate::fireball::Fireball;
 use crate::rng::Rng;
 use crate::room::{Room, Surface};
 use crate::tumbler::{Grip, GroundedParams, Tumbler, TumblerShape};
-use glam::{DMat3, DVec3};
+use glam::{DMat3, DQuat, DVec3};
 
 /// Overlaps smaller than this are left alone (metres).
 const OVERLAP_SLOP: f64 = 1e-5;
@@ -587,7 +587,14 @@ impl World {
             for (si, s) in shape.spheres.iter().enumerate() {
                 let c = ta.sphere_center(shape, si);
                 let speed = ta.point_velocity(c).length() * dt;
-                for wall in &Surface::ALL[1..] {
+                // The floor holds the round bottom exactly; it meets the
+                // other spheres only when the tumbler is knocked far over.
+                let walls = if si == 0 {
+                    &Surface::ALL[1..]
+                } else {
+                    &Surface::ALL[..]
+                };
+                for wall in walls {
                     let gap = room.distance(*wall, c) - s.radius;
                     if gap < speed.min(reach_cap) + TOUCH_SLOP {
                         let n = wall.inward_normal();
@@ -818,6 +825,29 @@ impl World {
             }
         }
         for t in &mut self.tumblers {
+            // A sphere in the floor: turn the tumbler back towards upright
+            // about its bottom's centre, which only lowers its centre of mass.
+            for (si, s) in shape.spheres.iter().enumerate().skip(1) {
+                let c = t.sphere_center(shape, si);
+                let overlap = s.radius - self.room.distance(Surface::Floor, c);
+                let axis = t.axis();
+                let lever = s.height * axis.cross(DVec3::Y).length();
+                if overlap > OVERLAP_SLOP && lever > 1e-6 {
+                    let turn = (overlap / lever).min(0.2);
+                    let about = axis.cross(DVec3::Y).normalize();
+                    let kinetic = t.kinetic_energy(shape);
+                    t.orientation =
+                        (DQuat::from_axis_angle(about, turn) * t.orientation).normalize();
+                    // Turning changes how the same velocities carry energy:
+                    // never let the correction add any.
+                    let turned = t.kinetic_energy(shape);
+                    if turned > kinetic {
+                        let keep = (kinetic / turned).sqrt();
+                        t.angular_velocity *= keep;
+                        t.center_velocity *= keep;
+                    }
+                }
+            }
             for (si, s) in shape.spheres.iter().enumerate() {
                 let c = t.sphere_center(shape, si);
                 let inside = self.room.clamp_sphere(c, s.radius);

@@ -6,6 +6,9 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::scene::Overrides;
 
+/// Help section of the options shared by every command.
+const SCENE_HEADING: &str = "Scene options";
+
 /// How long `rolypoly` runs when it is given no subcommand, in seconds.
 pub const DEFAULT_SECONDS: f64 = 10.0;
 
@@ -16,7 +19,13 @@ pub const DEFAULT_SECONDS: f64 = 10.0;
 /// summary. Every constant of a scene comes from a TOML scene file that
 /// overrides the built-in default (see scenes/default.toml for the format).
 #[derive(Debug, Parser)]
-#[command(name = "rolypoly", version, about, long_about, propagate_version = true)]
+#[command(
+    name = "rolypoly",
+    version,
+    about,
+    long_about,
+    propagate_version = true
+)]
 pub struct Cli {
     #[command(flatten)]
     pub scene: SceneArgs,
@@ -30,20 +39,32 @@ pub struct Cli {
 #[derive(Debug, Args)]
 pub struct SceneArgs {
     /// Scene file (TOML) whose keys override the built-in default scene.
-    #[arg(long, value_name = "FILE", global = true)]
+    #[arg(long, value_name = "FILE", global = true, help_heading = SCENE_HEADING)]
     pub scene: Option<PathBuf>,
 
     /// Seed of the random start (ball positions and velocities); the same
     /// seed gives the same run, step for step.
-    #[arg(long, value_name = "N", default_value_t = 1, global = true)]
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1,
+        global = true,
+        help_heading = SCENE_HEADING
+    )]
     pub seed: u64,
 
     /// Number of balls (overrides balls.count of the scene; 0 ..= 1000000).
-    #[arg(long, value_name = "N", global = true)]
+    #[arg(long, value_name = "N", global = true, help_heading = SCENE_HEADING)]
     pub balls: Option<usize>,
 
     /// Gravity in m/s^2 (overrides gravity of the scene; 0 ..= 100).
-    #[arg(long, value_name = "G", global = true, allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "G",
+        global = true,
+        help_heading = SCENE_HEADING,
+        allow_negative_numbers = true
+    )]
     pub gravity: Option<f64>,
 }
 
@@ -110,7 +131,9 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
     if seconds.is_finite() && (0.0..=1e9).contains(&seconds) {
         Ok(seconds)
     } else {
-        Err(format!("{seconds} is out of range: allowed 0 ..= 1000000000"))
+        Err(format!(
+            "{seconds} is out of range: allowed 0 ..= 1000000000"
+        ))
     }
 }
 
@@ -132,11 +155,11 @@ mod tests {
 
     #[test]
     fn scene_options_go_before_or_after_the_subcommand() {
-        let cli = Cli::try_parse_from(["rolypoly", "--seed", "7", "simulate", "--steps", "3"])
-            .unwrap();
+        let cli =
+            Cli::try_parse_from(["rolypoly", "--seed", "7", "simulate", "--steps", "3"]).unwrap();
         assert_eq!(cli.scene.seed, 7);
-        let cli = Cli::try_parse_from(["rolypoly", "simulate", "--steps", "3", "--seed", "8"])
-            .unwrap();
+        let cli =
+            Cli::try_parse_from(["rolypoly", "simulate", "--steps", "3", "--seed", "8"]).unwrap();
         assert_eq!(cli.scene.seed, 8);
     }
 
@@ -148,8 +171,9 @@ mod tests {
                 .is_err()
         );
         assert!(Cli::try_parse_from(["rolypoly", "simulate", "--seconds", "-1"]).is_err());
-        assert!(Cli::try_parse_from(["rolypoly", "simulate", "--steps", "1", "--every", "0"])
-            .is_err());
+        assert!(
+            Cli::try_parse_from(["rolypoly", "simulate", "--steps", "1", "--every", "0"]).is_err()
+        );
     }
 
     #[test]

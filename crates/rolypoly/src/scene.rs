@@ -154,7 +154,8 @@ fn build(
         options: HashMap::new(),
     };
     if let Some(source) = source {
-        let file: FileScene = toml::from_str(source).map_err(|e| syntax_error(&e, source, origin))?;
+        let file: FileScene =
+            toml::from_str(source).map_err(|e| syntax_error(&e, source, origin))?;
         let mut overlay = Overlay {
             source,
             origin,
@@ -165,7 +166,9 @@ fn build(
     }
     if let Some(count) = overrides.balls {
         config.balls.count = count;
-        sources.options.insert("balls.count".into(), "--balls".into());
+        sources
+            .options
+            .insert("balls.count".into(), "--balls".into());
     }
     if let Some(gravity) = overrides.gravity {
         config.gravity = gravity;
@@ -182,7 +185,11 @@ fn build(
 /// 1-based line of a byte offset.
 fn line_of(source: &str, offset: usize) -> usize {
     let end = offset.min(source.len());
-    source.as_bytes()[..end].iter().filter(|&&b| b == b'\n').count() + 1
+    source.as_bytes()[..end]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
 }
 
 fn syntax_error(error: &toml::de::Error, source: &str, origin: &str) -> SceneError {
@@ -194,14 +201,66 @@ fn syntax_error(error: &toml::de::Error, source: &str, origin: &str) -> SceneErr
         .map(str::trim)
         .filter(|l| !l.is_empty())
         .collect::<Vec<_>>()
-        .join("; ");
+        .join("; ")
+        .replacen("unknown field", "unknown key", 1)
+        .replacen("missing field", "missing key", 1);
     SceneError::Syntax {
         at: Location {
             origin: origin.to_owned(),
             line,
         },
-        message,
+        message: qualify_unknown_key(message, source, line),
     }
+}
+
+/// Turns "unknown key `colour`" into "unknown key `balls.colour`" when the
+/// offending line is a plain `key = value` under a table header, so the
+/// user sees the full path of what was not understood.
+fn qualify_unknown_key(message: String, source: &str, line: Option<usize>) -> String {
+    let Some(rest) = message.strip_prefix("unknown key `") else {
+        return message;
+    };
+    let Some((key, tail)) = rest.split_once('`') else {
+        return message;
+    };
+    match line.and_then(|line| table_of_key(source, line, key)) {
+        Some(table) if !table.is_empty() => format!("unknown key `{table}.{key}`{tail}"),
+        _ => message,
+    }
+}
+
+/// The table header in effect for `key = ...` on 1-based `line`, or `None`
+/// when that line is not such an assignment. An empty string is the top level.
+fn table_of_key(source: &str, line: usize, key: &str) -> Option<String> {
+    let lines: Vec<&str> = source.lines().collect();
+    let text = lines.get(line.checked_sub(1)?)?.trim_start();
+    if !text.strip_prefix(key)?.trim_start().starts_with('=') {
+        return None;
+    }
+    let header = lines[..line - 1].iter().rev().find_map(|l| table_header(l));
+    Some(header.unwrap_or_default())
+}
+
+/// The dotted name of a `[table]` or `[[array]]` header line.
+fn table_header(line: &str) -> Option<String> {
+    let line = line.split('#').next()?.trim();
+    let inner = line
+        .strip_prefix("[[")
+        .and_then(|l| l.strip_suffix("]]"))
+        .or_else(|| line.strip_prefix('[').and_then(|l| l.strip_suffix(']')))?
+        .trim();
+    // Rejects lines of a multi-line array such as `[0.1, 0.2, 0.3],`.
+    let is_name = inner.starts_with(|c: char| c.is_ascii_alphabetic() || c == '"' || c == '\'')
+        && inner
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | ' ' | '"' | '\''));
+    is_name.then(|| {
+        inner
+            .split('.')
+            .map(str::trim)
+            .collect::<Vec<_>>()
+            .join(".")
+    })
 }
 
 // ---------------------------------------------------------------------------
@@ -402,14 +461,20 @@ impl Overlay<'_> {
                     colors.back,
                     colors.front,
                 ];
-                for ((name, dst), value) in SURFACE_NAMES.iter().zip(&mut c.room.colors).zip(given) {
+                for ((name, dst), value) in SURFACE_NAMES.iter().zip(&mut c.room.colors).zip(given)
+                {
                     self.set(&format!("room.colors.{name}"), dst, value, rgb);
                 }
             }
         }
 
         if let Some(balls) = file.balls {
-            self.set_count("balls.count", &mut c.balls.count, balls.count, (0, MAX_BALLS))?;
+            self.set_count(
+                "balls.count",
+                &mut c.balls.count,
+                balls.count,
+                (0, MAX_BALLS),
+            )?;
             self.set("balls.radius", &mut c.balls.radius, balls.radius, |v| v);
             self.set("balls.mass", &mut c.balls.mass, balls.mass, |v| v);
             self.set(
@@ -418,14 +483,29 @@ impl Overlay<'_> {
                 balls.restitution,
                 |v| v,
             );
-            self.set("balls.speed_min", &mut c.balls.speed_min, balls.speed_min, |v| v);
-            self.set("balls.speed_max", &mut c.balls.speed_max, balls.speed_max, |v| v);
+            self.set(
+                "balls.speed_min",
+                &mut c.balls.speed_min,
+                balls.speed_min,
+                |v| v,
+            );
+            self.set(
+                "balls.speed_max",
+                &mut c.balls.speed_max,
+                balls.speed_max,
+                |v| v,
+            );
             self.set("balls.color", &mut c.balls.color, balls.color, rgb);
         }
 
         if let Some(t) = file.tumblers {
             let dst = &mut c.tumblers;
-            self.set("tumblers.restitution", &mut dst.restitution, t.restitution, |v| v);
+            self.set(
+                "tumblers.restitution",
+                &mut dst.restitution,
+                t.restitution,
+                |v| v,
+            );
             self.set(
                 "tumblers.floor_friction",
                 &mut dst.floor_friction,
@@ -735,8 +815,16 @@ impl Checker<'_> {
                 format!("each component {size_ok}"),
             ));
         }
-        self.real("room.restitution", c.room.restitution, Bounds::closed(0.0, 1.0))?;
-        self.real("room.friction", c.room.friction, Bounds::closed(0.0, MAX_FRICTION))?;
+        self.real(
+            "room.restitution",
+            c.room.restitution,
+            Bounds::closed(0.0, 1.0),
+        )?;
+        self.real(
+            "room.friction",
+            c.room.friction,
+            Bounds::closed(0.0, MAX_FRICTION),
+        )?;
         self.real(
             "room.rolling_resistance",
             c.room.rolling_resistance,
@@ -755,7 +843,11 @@ impl Checker<'_> {
         self.real_why("balls.radius", b.radius, fits, fits_why)?;
         self.real("balls.mass", b.mass, Bounds::positive(MAX_MASS))?;
         self.real("balls.restitution", b.restitution, Bounds::closed(0.0, 1.0))?;
-        self.real("balls.speed_min", b.speed_min, Bounds::closed(0.0, MAX_SPEED))?;
+        self.real(
+            "balls.speed_min",
+            b.speed_min,
+            Bounds::closed(0.0, MAX_SPEED),
+        )?;
         if b.speed_min.is_finite() {
             self.real_why(
                 "balls.speed_max",
@@ -817,7 +909,11 @@ impl Checker<'_> {
         let c = self.config;
         let t = &c.tumblers;
         let size = c.room.size;
-        self.real("tumblers.restitution", t.restitution, Bounds::closed(0.0, 1.0))?;
+        self.real(
+            "tumblers.restitution",
+            t.restitution,
+            Bounds::closed(0.0, 1.0),
+        )?;
         self.real(
             "tumblers.floor_friction",
             t.floor_friction,
@@ -894,6 +990,20 @@ impl Checker<'_> {
                 Bounds::closed(-reach_z, reach_z),
                 why,
             )?;
+            // Round bottoms resting on the floor may touch but not overlap.
+            for (j, q) in t.placements.iter().enumerate().take(i) {
+                let apart = (p.x - q.x).hypot(p.z - q.z);
+                if apart < 2.0 * bottom {
+                    return Err(self.invalid(
+                        &key,
+                        format!(
+                            "overlaps tumblers.placement[{j}]: their centres are {apart} apart, \
+                             at least {} (twice the bottom radius) is needed",
+                            2.0 * bottom
+                        ),
+                    ));
+                }
+            }
             self.direction(&format!("{key}.tilt_axis"), p.tilt_axis)?;
             self.real(
                 &format!("{key}.tilt_deg"),
@@ -925,7 +1035,11 @@ mod tests {
     #[test]
     fn shipped_default_file_equals_builtin_default() {
         let parsed = parse_scene(DEFAULT_SCENE, "scenes/default.toml").unwrap();
-        assert_eq!(parsed, WorldConfig::default());
+        assert_eq!(
+            parsed,
+            WorldConfig::default(),
+            "scenes/default.toml must spell out WorldConfig::default() exactly"
+        );
     }
 
     #[test]
@@ -948,8 +1062,10 @@ mod tests {
         assert_eq!(parsed, expected);
 
         let parsed = parse("gravity = 3.5").unwrap();
-        let mut expected = WorldConfig::default();
-        expected.gravity = 3.5;
+        let expected = WorldConfig {
+            gravity: 3.5,
+            ..WorldConfig::default()
+        };
         assert_eq!(parsed, expected);
 
         let parsed = parse("[room.colors]\nleft = [0, 0, 1]\n").unwrap();
@@ -960,24 +1076,34 @@ mod tests {
 
     #[test]
     fn integers_are_accepted_for_reals() {
-        let parsed = parse("gravity = 10\n[room]\nsize = [6, 3, 5]\n").unwrap();
+        let parsed = parse("gravity = 10\n[room]\nsize = [6, 3, 8]\n").unwrap();
         assert_eq!(parsed.gravity, 10.0);
-        assert_eq!(parsed.room.size, DVec3::new(6.0, 3.0, 5.0));
+        assert_eq!(parsed.room.size, DVec3::new(6.0, 3.0, 8.0));
     }
 
     #[test]
     fn unknown_key_names_line_and_key() {
         let text = error_text("gravity = 9.81\n\n[balls]\ncount = 3\ncolour = [1, 0, 0]\n");
-        assert!(text.starts_with("test.toml:5: "), "{text}");
-        assert!(text.contains("colour"), "{text}");
+        assert!(
+            text.starts_with("test.toml:5: unknown key `balls.colour`"),
+            "{text}"
+        );
 
         let text = error_text("[lighting]\nintensity = 3\n");
         assert!(text.starts_with("test.toml:1: "), "{text}");
         assert!(text.contains("lighting"), "{text}");
 
         let text = error_text("[[tumblers.placement]]\nx = 0\nz = 0\nangle = 3\n");
-        assert!(text.starts_with("test.toml:4: "), "{text}");
-        assert!(text.contains("angle"), "{text}");
+        assert!(
+            text.starts_with("test.toml:4: unknown key `tumblers.placement.angle`"),
+            "{text}"
+        );
+
+        let text = error_text("[room.colors]\nfloor = [0, 0, 0]\nroof = [1, 1, 1]\n");
+        assert!(
+            text.starts_with("test.toml:3: unknown key `room.colors.roof`"),
+            "{text}"
+        );
     }
 
     #[test]
@@ -1013,7 +1139,10 @@ mod tests {
         let text = error_text(
             "[[tumblers.placement]]\nx = 0\nz = 0\n\n[[tumblers.placement]]\nx = 1\nz = 9\n",
         );
-        assert!(text.starts_with("test.toml:7: tumblers.placement[1].z = 9"), "{text}");
+        assert!(
+            text.starts_with("test.toml:7: tumblers.placement[1].z = 9"),
+            "{text}"
+        );
         assert!(text.contains("allowed -3.7 ..= 3.7"), "{text}");
 
         let text = error_text("[room.colors]\nfloor = [0.5, 1.2, 0]\n");
@@ -1031,7 +1160,10 @@ mod tests {
         );
 
         let text = error_text("[balls]\nspeed_min = 5\nspeed_max = 4\n");
-        assert!(text.starts_with("test.toml:3: balls.speed_max = 4"), "{text}");
+        assert!(
+            text.starts_with("test.toml:3: balls.speed_max = 4"),
+            "{text}"
+        );
 
         let text = error_text(
             "[tumblers]\nspheres = [\n  { height = 0, radius = 0.3, mass = 2 },\n  \
@@ -1041,7 +1173,10 @@ mod tests {
              { height = 0.6, radius = 0.1, mass = 0.1 },\n  \
              { height = 0.7, radius = 0.1, mass = 0.1 },\n]\n",
         );
-        assert!(text.starts_with("test.toml:5: tumblers.spheres[2].radius = 0.35"), "{text}");
+        assert!(
+            text.starts_with("test.toml:5: tumblers.spheres[2].radius = 0.35"),
+            "{text}"
+        );
     }
 
     #[test]
@@ -1103,11 +1238,28 @@ mod tests {
     }
 
     #[test]
+    fn overlapping_tumblers_are_rejected() {
+        let text = error_text(
+            "[[tumblers.placement]]\nx = 0\nz = 0\n\n[[tumblers.placement]]\nx = 0.5\nz = 0\n",
+        );
+        assert!(
+            text.starts_with("test.toml:6: tumblers.placement[1]: overlaps"),
+            "{text}"
+        );
+    }
+
+    #[test]
     fn bad_tilt_is_rejected() {
         let text = error_text("[[tumblers.placement]]\nx = 0\nz = 0\ntilt_deg = 200\n");
-        assert!(text.starts_with("test.toml:4: tumblers.placement[0].tilt_deg = 200"), "{text}");
+        assert!(
+            text.starts_with("test.toml:4: tumblers.placement[0].tilt_deg = 200"),
+            "{text}"
+        );
         let text = error_text("[[tumblers.placement]]\nx = 0\nz = 0\ntilt_axis = [0, 0, 0]\n");
-        assert!(text.starts_with("test.toml:4: tumblers.placement[0].tilt_axis"), "{text}");
+        assert!(
+            text.starts_with("test.toml:4: tumblers.placement[0].tilt_axis"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -404,8 +404,14 @@ mod tests {
         assert_eq!(scene["seed"], 5);
         assert_eq!(scene["balls"].as_array().unwrap().len(), 30);
         assert_eq!(scene["tumblers"], 5);
-        assert_eq!(scene["tumbler_shape"]["spheres"].as_array().unwrap().len(), 6);
-        assert_eq!(scene["tumbler_shape"]["inertia"].as_array().unwrap().len(), 3);
+        assert_eq!(
+            scene["tumbler_shape"]["spheres"].as_array().unwrap().len(),
+            6
+        );
+        assert_eq!(
+            scene["tumbler_shape"]["inertia"].as_array().unwrap().len(),
+            3
+        );
         assert!(scene["room"]["colors"]["floor"].is_array());
         for key in ["radius", "speed", "mass"] {
             assert!(scene["fireball"][key].is_number(), "{key}");

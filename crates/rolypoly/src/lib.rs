@@ -1,0 +1,103 @@
+//! The rolypoly program: scene files, the command line and the headless
+//! commands, on top of the `rolypoly_physics` simulation.
+//!
+//! The binary (`main.rs`) only parses arguments and reports errors; the
+//! pieces live here so that tests and later front ends can reuse them.
+
+pub mod cli;
+pub mod scene;
+pub mod simulate;
+pub mod trace;
+
+use std::io::{self, Write};
+
+use anyhow::Context;
+use rolypoly_physics::World;
+
+use cli::{Cli, Command, DEFAULT_SECONDS, SimulateArgs, steps_for};
+use scene::BUILTIN_ORIGIN;
+
+/// Runs the program for parsed arguments.
+pub fn run(cli: &Cli) -> anyhow::Result<()> {
+    let scene_args = &cli.scene;
+    let path = scene_args.scene.as_deref();
+    let config = scene::load_scene_with(path, &scene_args.overrides())?;
+    let scene_name = match path {
+        Some(path) => format!("scene `{}`", path.display()),
+        None => format!("the {BUILTIN_ORIGIN}"),
+    };
+    let dt = config.solver.dt;
+    let mut world = World::new(config, scene_args.seed)
+        .with_context(|| format!("cannot build {scene_name}"))?;
+
+    match &cli.command {
+        None => {
+            let options = simulate::Options {
+                steps: steps_for(DEFAULT_SECONDS, dt),
+                fireball: false,
+                seed: scene_args.seed,
+                every: 1,
+            };
+            let summary = simulate::run::<io::Sink>(&mut world, &scene_name, &options, None)?;
+            print_summary(&summary)
+        }
+        Some(Command::Simulate(args)) => {
+            simulate_command(&mut world, &scene_name, args, scene_args.seed, dt)
+        }
+    }
+}
+
+fn simulate_command(
+    world: &mut World,
+    scene_name: &str,
+    args: &SimulateArgs,
+    seed: u64,
+    dt: f64,
+) -> anyhow::Result<()> {
+    let steps = match (args.length.steps, args.length.seconds) {
+        (Some(steps), _) => steps,
+        (None, Some(seconds)) => steps_for(seconds, dt),
+        // clap requires one of the two.
+        (None, None) => anyhow::bail!("give the length of the run with --steps or --seconds"),
+    };
+    let options = simulate::Options {
+        steps,
+        fireball: args.fireball,
+        seed,
+        every: args.every,
+    };
+    match &args.trace {
+        None => {
+            let summary = simulate::run::<io::Sink>(world, scene_name, &options, None)?;
+            print_summary(&summary)
+        }
+        Some(path) => {
+            let mut writer = trace::create(path)?;
+            let summary = simulate::run(world, scene_name, &options, Some(&mut writer))?;
+            writer.finish()?;
+            // Standard output carries the trace itself; keep it pure JSON Lines.
+            if trace::is_stdout(path) {
+                Ok(())
+            } else {
+                print_summary(&summary)
+            }
+        }
+    }
+}
+
+fn print_summary(summary: &simulate::Summary) -> anyhow::Result<()> {
+    let mut out = io::stdout().lock();
+    writeln!(out, "{summary}")
+        .and_then(|()| out.flush())
+        .context("cannot write to standard output")
+}
+
+/// True when `error` comes from a closed pipe (`rolypoly ... | head`): the
+/// reader has what it wanted, so this is no failure to report.
+pub fn is_broken_pipe(error: &anyhow::Error) -> bool {
+    error.chain().any(|cause| {
+        cause
+            .downcast_ref::<io::Error>()
+            .is_some_and(|e| e.kind() == io::ErrorKind::BrokenPipe)
+    })
+}

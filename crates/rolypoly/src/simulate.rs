@@ -1,0 +1,187 @@
+//! Headless simulation (SPEC A3): step a world a fixed number of steps,
+//! optionally writing a trace, and summarise the result.
+
+use std::fmt;
+use std::io::Write;
+use std::time::{Duration, Instant};
+
+use rolypoly_physics::{EventKind, World};
+
+use crate::trace::{TraceError, TraceWriter, event_kind_name};
+
+/// A ball slower than this (m/s) counts as at rest in the summary.
+pub const REST_SPEED: f64 = 0.02;
+
+/// What to run.
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Steps to simulate after the initial state.
+    pub steps: u64,
+    /// Launch the fireball from the scene's spawn point before the first step.
+    pub fireball: bool,
+    /// Seed the world was built with; recorded in the trace.
+    pub seed: u64,
+    /// A state line every this many steps (at least 1).
+    pub every: u64,
+}
+
+/// Event kinds in the order the summary lists them.
+const EVENT_KINDS: [&str; 6] = [
+    "ball_surface",
+    "ball_ball",
+    "ball_tumbler",
+    "fireball_surface",
+    "fireball_ball",
+    "fireball_tumbler",
+];
+
+/// The outcome of a run, printed as one paragraph.
+#[derive(Clone, Debug)]
+pub struct Summary {
+    /// How the scene is named to the user: "the built-in default scene" or
+    /// "scene `FILE`".
+    pub scene: String,
+    pub seed: u64,
+    pub steps: u64,
+    pub time: f64,
+    pub dt: f64,
+    pub wall: Duration,
+    pub balls: usize,
+    pub balls_alive: usize,
+    pub balls_at_rest: usize,
+    pub tumblers: usize,
+    pub fireball: bool,
+    pub kinetic: f64,
+    pub potential: f64,
+    /// Events per kind, in [`EVENT_KINDS`] order.
+    pub events: [u64; 6],
+}
+
+impl Summary {
+    pub fn total_events(&self) -> u64 {
+        self.events.iter().sum()
+    }
+}
+
+fn event_index(kind: &EventKind) -> usize {
+    let name = event_kind_name(kind);
+    EVENT_KINDS.iter().position(|&k| k == name).unwrap_or(0)
+}
+
+/// Runs `options.steps` steps of `world`. With a trace, writes the scene
+/// line, the state at step 0, then every `options.every` steps and at the
+/// last step, each state line carrying the events since the previous one.
+pub fn run<W: Write>(
+    world: &mut World,
+    scene: &str,
+    options: &Options,
+    mut trace: Option<&mut TraceWriter<W>>,
+) -> Result<Summary, TraceError> {
+    let started = Instant::now();
+    let every = options.every.max(1);
+    if options.fireball {
+        world.launch_fireball(None);
+    }
+    if let Some(trace) = trace.as_deref_mut() {
+        trace.scene(world, options.seed)?;
+        trace.state(world, &[])?;
+    }
+
+    let mut events = [0u64; 6];
+    let mut pending = Vec::new();
+    for step in 1..=options.steps {
+        world.step();
+        pending.extend(world.drain_events());
+        for event in &pending {
+            events[event_index(&event.kind)] += 1;
+        }
+        match trace.as_deref_mut() {
+            Some(trace) => {
+                if step % every == 0 || step == options.steps {
+                    trace.state(world, &pending)?;
+                    pending.clear();
+                }
+            }
+            None => pending.clear(),
+        }
+    }
+
+    Ok(summarize(world, scene, options, started.elapsed(), events))
+}
+
+fn summarize(
+    world: &World,
+    scene: &str,
+    options: &Options,
+    wall: Duration,
+    events: [u64; 6],
+) -> Summary {
+    let balls = world.balls();
+    let alive = balls.alive();
+    let at_rest = balls
+        .velocities()
+        .iter()
+        .zip(alive)
+        .filter(|(v, alive)| **alive && v.length() < REST_SPEED)
+        .count();
+    let energy = world.energy();
+    Summary {
+        scene: scene.to_owned(),
+        seed: options.seed,
+        steps: world.step_count(),
+        time: world.time(),
+        dt: world.config().solver.dt,
+        wall,
+        balls: balls.len(),
+        balls_alive: alive.iter().filter(|&&a| a).count(),
+        balls_at_rest: at_rest,
+        tumblers: world.tumblers().len(),
+        fireball: world.fireball().is_some(),
+        kinetic: energy.kinetic,
+        potential: energy.potential,
+        events,
+    }
+}
+
+impl fmt::Display for Summary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "Simulated {} steps ({:.3} s at dt = {:.6} s) of {} with seed {} in {:.3} s of wall time. ",
+            self.steps,
+            self.time,
+            self.dt,
+            self.scene,
+            self.seed,
+            self.wall.as_secs_f64()
+        )?;
+        write!(
+            f,
+            "{} balls ({} in play, {} at rest below {REST_SPEED} m/s), {} tumblers, fireball {}. ",
+            self.balls,
+            self.balls_alive,
+            self.balls_at_rest,
+            self.tumblers,
+            if self.fireball { "flying" } else { "absent" },
+        )?;
+        write!(
+            f,
+            "Final energy: kinetic {:.4} J, potential {:.4} J, total {:.4} J. ",
+            self.kinetic,
+            self.potential,
+            self.kinetic + self.potential
+        )?;
+        write!(f, "{} collision events", self.total_events())?;
+        let parts: Vec<String> = EVENT_KINDS
+            .iter()
+            .zip(self.events)
+            .filter(|(_, n)| *n > 0)
+            .map(|(kind, n)| format!("{n} {}", kind.replace('_', "-")))
+            .collect();
+        if parts.is_empty() {
+            f.write_str(".")
+        } else {
+            write!(f, " ({}).", parts.join(", "))
+        }
+    }
+}

@@ -1,0 +1,248 @@
+//! Runs the built `rolypoly` binary the way a user does.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn rolypoly(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(args)
+        .output()
+        .expect("the rolypoly binary runs")
+}
+
+fn stdout(output: &Output) -> String {
+    String::from_utf8(output.stdout.clone()).expect("stdout is UTF-8")
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8(output.stderr.clone()).expect("stderr is UTF-8")
+}
+
+/// Writes a scene file into this test target's scratch folder.
+fn scene_file(name: &str, text: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-scenes");
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("scene file written");
+    path
+}
+
+/// Asserts a failed run: non-zero exit, one `error:` message, no panic.
+fn assert_clean_failure(output: &Output) -> String {
+    let err = stderr(output);
+    assert!(!output.status.success(), "expected failure, stderr: {err}");
+    assert!(err.starts_with("error: "), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(output.stdout.is_empty(), "nothing on stdout on failure");
+    err
+}
+
+fn json_lines(text: &str) -> Vec<serde_json::Value> {
+    text.lines()
+        .map(|line| serde_json::from_str(line).expect("each line is JSON"))
+        .collect()
+}
+
+#[test]
+fn trace_to_stdout_is_a_scene_line_then_state_lines() {
+    let output = rolypoly(&["simulate", "--steps", "50", "--trace", "-"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let lines = json_lines(&stdout(&output));
+    assert_eq!(lines.len(), 1 + 51, "scene line + steps 0..=50");
+    assert_eq!(lines[0]["kind"], "scene");
+    assert_eq!(lines[0]["seed"], 1);
+    for (i, line) in lines[1..].iter().enumerate() {
+        assert_eq!(line["kind"], "state");
+        assert_eq!(line["step"], i as u64);
+        assert_eq!(line["balls"].as_array().map(Vec::len), Some(30));
+        assert_eq!(line["tumblers"].as_array().map(Vec::len), Some(5));
+        assert!(line["energy"]["total"].is_number());
+        assert!(line["events"].is_array());
+    }
+}
+
+#[test]
+fn every_k_steps_and_the_last_step() {
+    let output = rolypoly(&["simulate", "--steps", "50", "--every", "7", "--trace", "-"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let steps: Vec<u64> = json_lines(&stdout(&output))[1..]
+        .iter()
+        .map(|line| line["step"].as_u64().expect("step"))
+        .collect();
+    assert_eq!(steps, [0, 7, 14, 21, 28, 35, 42, 49, 50]);
+}
+
+#[test]
+fn same_seed_same_bytes_other_seed_differs() {
+    let run = |seed: &str| {
+        let output = rolypoly(&[
+            "simulate",
+            "--steps",
+            "60",
+            "--seed",
+            seed,
+            "--fireball",
+            "--trace",
+            "-",
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        output.stdout
+    };
+    let first = run("7");
+    assert_eq!(first, run("7"));
+    assert_ne!(first, run("8"));
+}
+
+#[test]
+fn summary_without_trace() {
+    let output = rolypoly(&["simulate", "--seconds", "0.5", "--balls", "4"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(text.contains("Simulated 60 steps"), "{text}");
+    assert!(text.contains("4 balls"), "{text}");
+    assert!(text.contains("energy"), "{text}");
+}
+
+#[test]
+fn no_subcommand_simulates_ten_seconds() {
+    let output = rolypoly(&["--balls", "5"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(text.contains("Simulated 1200 steps"), "{text}");
+    assert!(text.contains("built-in default scene"), "{text}");
+}
+
+#[test]
+fn trace_to_a_file_and_summary_to_stdout() {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-trace.jsonl");
+    let path_text = path.to_str().expect("UTF-8 path");
+    let output = rolypoly(&[
+        "simulate", "--steps", "10", "--every", "5", "--trace", path_text,
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(stdout(&output).contains("Simulated 10 steps"));
+    let trace = std::fs::read_to_string(&path).expect("trace written");
+    assert_eq!(json_lines(&trace).len(), 1 + 3);
+}
+
+#[test]
+fn unwritable_trace_names_the_file() {
+    let output = rolypoly(&[
+        "simulate",
+        "--steps",
+        "1",
+        "--trace",
+        "/no/such/dir/t.jsonl",
+    ]);
+    let err = assert_clean_failure(&output);
+    assert!(err.contains("/no/such/dir/t.jsonl"), "{err}");
+}
+
+#[test]
+fn unknown_key_names_file_line_and_key() {
+    let path = scene_file(
+        "unknown-key.toml",
+        "gravity = 9.81\n\n[balls]\ncount = 3\ncolour = [1, 0, 0]\n",
+    );
+    let output = rolypoly(&[
+        "simulate",
+        "--steps",
+        "1",
+        "--scene",
+        path.to_str().unwrap(),
+    ]);
+    let err = assert_clean_failure(&output);
+    assert!(err.contains("unknown-key.toml:5:"), "{err}");
+    assert!(err.contains("balls.colour"), "{err}");
+}
+
+#[test]
+fn out_of_range_names_file_line_key_and_range() {
+    let path = scene_file(
+        "out-of-range.toml",
+        "[balls]\ncount = 3\nrestitution = 1.5\n",
+    );
+    let output = rolypoly(&[
+        "simulate",
+        "--steps",
+        "1",
+        "--scene",
+        path.to_str().unwrap(),
+    ]);
+    let err = assert_clean_failure(&output);
+    assert!(
+        err.contains(
+            "out-of-range.toml:3: balls.restitution = 1.5 is out of range: allowed 0 ..= 1"
+        ),
+        "{err}"
+    );
+}
+
+#[test]
+fn malformed_toml_names_file_and_line() {
+    let path = scene_file("malformed.toml", "gravity = 9.81\n[room\n");
+    let output = rolypoly(&["--scene", path.to_str().unwrap()]);
+    let err = assert_clean_failure(&output);
+    assert!(err.contains("malformed.toml:2:"), "{err}");
+}
+
+#[test]
+fn command_line_overrides_are_range_checked() {
+    let output = rolypoly(&["simulate", "--steps", "1", "--gravity", "-3"]);
+    let err = assert_clean_failure(&output);
+    assert!(err.contains("--gravity"), "{err}");
+    assert!(err.contains("allowed 0 ..= 100"), "{err}");
+
+    let output = rolypoly(&["simulate", "--steps", "1", "--balls", "2000000"]);
+    let err = assert_clean_failure(&output);
+    assert!(err.contains("allowed 0 ..= 1000000"), "{err}");
+}
+
+#[test]
+fn missing_scene_file_is_a_clear_error() {
+    let output = rolypoly(&["simulate", "--steps", "1", "--scene", "no/such/scene.toml"]);
+    let err = assert_clean_failure(&output);
+    assert!(
+        err.contains("cannot read scene file `no/such/scene.toml`"),
+        "{err}"
+    );
+    assert!(err.contains("os error"), "{err}");
+}
+
+#[test]
+fn help_documents_every_flag() {
+    let output = rolypoly(&["simulate", "--help"]);
+    assert!(output.status.success());
+    let text = stdout(&output);
+    for flag in [
+        "--scene",
+        "--seed",
+        "--balls",
+        "--gravity",
+        "--steps",
+        "--seconds",
+        "--trace",
+        "--every",
+        "--fireball",
+    ] {
+        assert!(text.contains(flag), "simulate --help lacks {flag}:\n{text}");
+    }
+
+    let output = rolypoly(&["--help"]);
+    assert!(output.status.success());
+    let text = stdout(&output);
+    for word in ["simulate", "--scene", "--seed", "--balls", "--gravity"] {
+        assert!(text.contains(word), "--help lacks {word}:\n{text}");
+    }
+}
+
+#[test]
+fn usage_errors_exit_non_zero() {
+    let output = rolypoly(&["simulate"]);
+    assert!(!output.status.success());
+    assert!(!stderr(&output).contains("panicked"));
+    let output = rolypoly(&["simulate", "--steps", "1", "--every", "0"]);
+    assert!(!output.status.success());
+    let output = rolypoly(&["--no-such-flag"]);
+    assert!(!output.status.success());
+}
