@@ -19,18 +19,38 @@ fn case(name: &'static str, balls: usize, room: DVec3, fireball: bool, seconds: 
     let mut config = WorldConfig::default();
     config.balls.count = balls;
     config.room.size = room;
-    Case { name, config, fireball, seconds }
+    Case {
+        name,
+        config,
+        fireball,
+        seconds,
+    }
 }
 
 fn main() {
     let default_room = WorldConfig::default().room.size;
     let cases = [
-        case("default scene (30 balls, 5 tumblers)", 30, default_room, false, 10.0),
+        case(
+            "default scene (30 balls, 5 tumblers)",
+            30,
+            default_room,
+            false,
+            10.0,
+        ),
         case("default scene + fireball", 30, default_room, true, 10.0),
         case("1k balls, default room", 1_000, default_room, false, 3.0),
-        case("10k balls, 16 x 6 x 16 m room", 10_000, DVec3::new(16.0, 6.0, 16.0), false, 1.0),
+        case(
+            "10k balls, 16 x 6 x 16 m room",
+            10_000,
+            DVec3::new(16.0, 6.0, 16.0),
+            false,
+            1.0,
+        ),
     ];
-    println!("{:<40} {:>8} {:>12} {:>12} {:>16}", "scene", "steps", "us/step", "steps/s", "ball-steps/s");
+    println!(
+        "{:<40} {:>8} {:>12} {:>12} {:>16}",
+        "scene", "steps", "us/step", "steps/s", "ball-steps/s"
+    );
     for c in cases {
         let balls = c.config.balls.count;
         let dt = c.config.solver.dt;

@@ -10,17 +10,17 @@
 //!    end with the bounce their restitution asks for (measured from the
 //!    approach speed before the step), or at rest.
 //!
-//! Contacts with a tumbler bounce in stage 1 already, when touching: a
-//! tumbler's response to an impulse changes as it turns, and splitting one
-//! impact over two configurations could create energy.
-//!
-//! Every impulse is along the contact normal with a non-negative magnitude,
-//! so neither stage can add energy.
+//! Only lone impacts bounce (see [`Crowd`]); contacts with a tumbler bounce
+//! in stage 1 already (see [`solve_predict`]). Every other impulse stops an
+//! approach and nothing more, so no stage can add energy.
 
 use crate::balls::Balls;
 use crate::room::Surface;
 use crate::tumbler::{Response, Tumbler, TumblerShape};
 use glam::{DMat3, DVec3};
+
+/// Surfaces closer than this (metres) at the end of a step count as touching.
+const TOUCHING: f64 = 1e-6;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum BodyRef {
@@ -92,7 +92,7 @@ impl Contact {
 }
 
 impl Contact {
-    pub fn involves_tumbler(&self) -> bool {
+    fn involves_tumbler(&self) -> bool {
         matches!(self.a, BodyRef::Tumbler(..)) || matches!(self.b, BodyRef::Tumbler(..))
     }
 }
@@ -197,30 +197,104 @@ impl Bodies<'_> {
     }
 }
 
+/// Which contacts act on each body in a stage, so that a lone impact, which
+/// may bounce, can be told from a crowded one, which may not.
+///
+/// Bouncing each of several coupled contacts to the speed its own approach
+/// asks for can create energy (think of a ball pressed between two others);
+/// stopping them cannot. Two contacts on one ball are coupled unless their
+/// normals are perpendicular, so a ball rolling on the floor still bounces
+/// off another one sideways. On a tumbler every pair of contacts is coupled.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Crowd {
+    ball_contacts: Vec<[u32; Crowd::PER_BALL]>,
+    ball_count: Vec<u8>,
+    tumbler_count: Vec<u8>,
+}
+
+impl Crowd {
+    const PER_BALL: usize = 6;
+
+    fn reset(&mut self, balls: usize, tumblers: usize) {
+        self.ball_contacts.resize(balls, [0; Crowd::PER_BALL]);
+        self.ball_count.clear();
+        self.ball_count.resize(balls, 0);
+        self.tumbler_count.clear();
+        self.tumbler_count.resize(tumblers, 0);
+    }
+
+    fn add(&mut self, index: usize, c: &Contact) {
+        for body in [c.a, c.b] {
+            match body {
+                BodyRef::Ball(i) => {
+                    let n = self.ball_count[i] as usize;
+                    if n < Crowd::PER_BALL {
+                        self.ball_contacts[i][n] = index as u32;
+                    }
+                    self.ball_count[i] = self.ball_count[i].saturating_add(1);
+                }
+                BodyRef::Tumbler(t, _) => {
+                    self.tumbler_count[t] = self.tumbler_count[t].saturating_add(1)
+                }
+                BodyRef::Wall(_) => {}
+            }
+        }
+    }
+
+    /// Whether contact `index` is the only one coupled to its bodies.
+    fn lone(&self, index: usize, contacts: &[Contact]) -> bool {
+        let c = &contacts[index];
+        [c.a, c.b].into_iter().all(|body| match body {
+            BodyRef::Ball(i) => {
+                let n = self.ball_count[i] as usize;
+                n <= Crowd::PER_BALL
+                    && self.ball_contacts[i][..n].iter().all(|&k| {
+                        k as usize == index
+                            || contacts[k as usize].normal.dot(c.normal).abs() < 1e-9
+                    })
+            }
+            BodyRef::Tumbler(t, _) => self.tumbler_count[t] == 1,
+            BodyRef::Wall(_) => true,
+        })
+    }
+}
+
 /// Stage 1: speculative, non-penetrating velocities for the coming step.
+///
+/// A lone impact on a tumbler due within the step bounces here already, at
+/// its full approach speed: a tumbler's response to an impulse changes as it
+/// turns, and splitting one impact over two configurations could create
+/// energy.
 pub(crate) fn solve_predict(
     bodies: &mut Bodies,
     contacts: &mut [Contact],
+    crowd: &mut Crowd,
     iterations: usize,
     dt: f64,
     bounce_threshold: f64,
 ) {
-    for c in contacts.iter_mut() {
+    crowd.reset(bodies.balls.len(), bodies.tumblers.len());
+    for (index, c) in contacts.iter_mut().enumerate() {
         bodies.prepare(c);
         c.impulse = 0.0;
         c.friction_impulse = [0.0; 2];
         // Gravity's half step, which the contact's two sides may not share.
         c.kick = bodies.normal_velocity(c) - c.approach;
+        if c.gap + (c.approach + c.kick).min(0.0) * dt <= TOUCHING {
+            crowd.add(index, c);
+        }
+    }
+    for index in 0..contacts.len() {
+        let c = &contacts[index];
+        let bounce = c.involves_tumbler()
+            && c.approach < -bounce_threshold
+            && c.gap + c.approach * dt <= 0.0
+            && crowd.lone(index, contacts);
+        contacts[index].bounce = bounce;
     }
     for _ in 0..iterations {
         for c in contacts.iter_mut() {
-            let target = if c.involves_tumbler()
-                && c.approach < -bounce_threshold
-                && c.gap + c.approach * dt <= 0.0
-            {
-                // A tumbler's response changes as it turns during the step, so
-                // an impact due within the step bounces here, in one
-                // consistent stage, at its full approach speed.
+            let target = if c.bounce {
                 c.kick - c.restitution * c.approach
             } else if c.gap > 0.0 {
                 -c.gap / dt
@@ -240,34 +314,38 @@ pub(crate) fn solve_predict(
 
 /// Stage 2: contacts that pushed end bouncing or resting.
 ///
-/// Only a ball's single impact of the step bounces here, to the speed its
-/// restitution gives the approach measured before the step. A ball that also
-/// bounced off a wall or a tumbler, or that meets several bodies at once, has
-/// that approach spent or shared; bouncing each of its contacts to its own
-/// measured speed could create energy, so those contacts only stop the
-/// approach. `impacts` counts, per ball, the impacts of the step so far.
+/// A lone impact between balls, or of a ball on a wall, bounces to the speed
+/// its restitution gives the approach measured before the step (so a pair
+/// obeys the 1-D formulas exactly); every other contact that pushed ends at
+/// rest. A ball that bounced off a wall while moving has spent its approach
+/// already: `hit_wall` marks those, and their contacts only stop.
 pub(crate) fn solve_project(
     bodies: &mut Bodies,
     contacts: &mut [Contact],
+    crowd: &mut Crowd,
     iterations: usize,
     bounce_threshold: f64,
-    impacts: &mut [u8],
+    hit_wall: &[bool],
 ) {
-    let is_impact = |c: &Contact| c.pushed > 0.0 && c.approach < -bounce_threshold;
-    for c in contacts
-        .iter()
-        .filter(|c| is_impact(c) && !c.involves_tumbler())
-    {
-        for body in [c.a, c.b] {
-            if let BodyRef::Ball(i) = body {
-                impacts[i] = impacts[i].saturating_add(1);
-            }
+    crowd.reset(bodies.balls.len(), bodies.tumblers.len());
+    for (index, c) in contacts.iter().enumerate() {
+        if c.pushed > 0.0 {
+            crowd.add(index, c);
         }
     }
-    let single = |b: BodyRef| !matches!(b, BodyRef::Ball(i) if impacts[i] != 1);
+    let moved_off_wall = |b: BodyRef| matches!(b, BodyRef::Ball(i) if hit_wall[i]);
+    for index in 0..contacts.len() {
+        let c = &contacts[index];
+        let bounce = c.pushed > 0.0
+            && c.approach < -bounce_threshold
+            && !c.involves_tumbler()
+            && !moved_off_wall(c.a)
+            && !moved_off_wall(c.b)
+            && crowd.lone(index, contacts);
+        contacts[index].bounce = bounce;
+    }
     for c in contacts.iter_mut() {
         c.impulse = 0.0;
-        c.bounce = is_impact(c) && !c.involves_tumbler() && single(c.a) && single(c.b);
         if c.pushed > 0.0 {
             bodies.prepare(c);
         }

@@ -16,7 +16,7 @@ use crate::balls::{Balls, Tint};
 use crate::broadphase::Grid;
 use crate::ccd::first_impact;
 use crate::config::{Rgb, WorldConfig};
-use crate::contact::{Bodies, BodyRef, Contact, solve_predict, solve_project};
+use crate::contact::{Bodies, BodyRef, Contact, Crowd, solve_predict, solve_project};
 use crate::events::{Event, EventKind};
 use crate::fireball::Fireball;
 use crate::rng::Rng;
@@ -77,8 +77,9 @@ pub struct World {
     grid: Grid,
     contacts: Vec<Contact>,
     contact_inv: Vec<DMat3>,
-    /// Per ball: impacts during the current step (see `solve_project`).
-    impacts: Vec<u8>,
+    /// Per ball: bounced off a wall while moving this step (see `solve_project`).
+    hit_wall: Vec<bool>,
+    crowd: Crowd,
 }
 
 impl World {
@@ -86,18 +87,10 @@ impl World {
     /// positions with random velocities drawn from `seed`.
     pub fn new(config: WorldConfig, seed: u64) -> Result<World, BuildError> {
         let room = Room::new(config.room.size);
-        if config.tumblers.spheres.is_empty() && !config.tumblers.placements.is_empty() {
-            return Err(BuildError("tumblers are placed but have no spheres".into()));
+        if config.tumblers.spheres.is_empty() {
+            return Err(BuildError("the tumbler shape has no spheres".into()));
         }
-        let shape = if config.tumblers.spheres.is_empty() {
-            TumblerShape::new(&[crate::config::SphereSpec {
-                height: 0.0,
-                radius: 1.0,
-                mass: 1.0,
-            }])
-        } else {
-            TumblerShape::new(&config.tumblers.spheres)
-        };
+        let shape = TumblerShape::new(&config.tumblers.spheres);
         let tumblers: Vec<Tumbler> = config
             .tumblers
             .placements
@@ -134,7 +127,8 @@ impl World {
             events: Vec::new(),
             grid,
             contacts: Vec::new(),
-            impacts: vec![0; b.count],
+            hit_wall: vec![false; b.count],
+            crowd: Crowd::default(),
             room,
             shape,
             config,
@@ -391,59 +385,45 @@ impl World {
             }
         }
         self.update_contact_inertia();
-        let iterations = self.config.solver.iterations;
-        {
-            let mut bodies = Bodies {
-                balls: &mut self.balls,
-                tumblers: &mut self.tumblers,
-                shape: &self.shape,
-                contact_inv: &self.contact_inv,
-                floor_friction: self.config.tumblers.floor_friction,
-            };
-            solve_predict(
-                &mut bodies,
-                &mut self.contacts,
-                iterations,
-                dt,
-                self.config.solver.bounce_threshold,
-            );
-        }
-        self.apply_rolling_resistance(dt);
+        let (iterations, threshold) = (
+            self.config.solver.iterations,
+            self.config.solver.bounce_threshold,
+        );
+        let (mut bodies, contacts, crowd, _) = self.solver_parts();
+        solve_predict(&mut bodies, contacts, crowd, iterations, dt, threshold);
+        self.apply_rolling_resistance();
 
         self.move_balls(dt, g);
         self.move_tumblers(dt);
-        let threshold = self.config.solver.bounce_threshold;
-        for c in &self.contacts {
-            if let BodyRef::Ball(i) = c.a {
-                if c.involves_tumbler() && c.pushed > 0.0 && c.approach < -threshold {
-                    self.impacts[i] = self.impacts[i].saturating_add(1);
-                }
-            }
-        }
 
         self.update_contact_inertia();
-        {
-            let mut bodies = Bodies {
-                balls: &mut self.balls,
-                tumblers: &mut self.tumblers,
-                shape: &self.shape,
-                contact_inv: &self.contact_inv,
-                floor_friction: self.config.tumblers.floor_friction,
-            };
-            solve_project(
-                &mut bodies,
-                &mut self.contacts,
-                iterations,
-                self.config.solver.bounce_threshold,
-                &mut self.impacts,
-            );
-        }
+        let (mut bodies, contacts, crowd, hit_wall) = self.solver_parts();
+        solve_project(
+            &mut bodies,
+            contacts,
+            crowd,
+            iterations,
+            threshold,
+            hit_wall,
+        );
         self.report_contacts();
         self.separate_overlaps();
         self.move_fireball(dt);
 
         self.steps += 1;
         self.time = self.steps as f64 * dt;
+    }
+
+    /// What the solver works on, borrowed apart.
+    fn solver_parts(&mut self) -> (Bodies<'_>, &mut [Contact], &mut Crowd, &[bool]) {
+        let bodies = Bodies {
+            balls: &mut self.balls,
+            tumblers: &mut self.tumblers,
+            shape: &self.shape,
+            contact_inv: &self.contact_inv,
+            floor_friction: self.config.tumblers.floor_friction,
+        };
+        (bodies, &mut self.contacts, &mut self.crowd, &self.hit_wall)
     }
 
     fn update_contact_inertia(&mut self) {
@@ -626,7 +606,7 @@ impl World {
 
     /// Rolling resistance: a ball pressed on a surface loses rolling speed
     /// in proportion to the normal impulse, until it stops.
-    fn apply_rolling_resistance(&mut self, _dt: f64) {
+    fn apply_rolling_resistance(&mut self) {
         let coefficient = self.config.room.rolling_resistance;
         for c in &self.contacts {
             let (BodyRef::Ball(i), BodyRef::Wall(_)) = (c.a, c.b) else {
@@ -656,7 +636,7 @@ impl World {
         let solver = &self.config.solver;
         let (e, mu) = (self.config.room.restitution, self.config.room.friction);
         for i in 0..self.balls.len() {
-            self.impacts[i] = 0;
+            self.hit_wall[i] = false;
             if !self.balls.alive[i] {
                 continue;
             }
@@ -692,7 +672,7 @@ impl World {
                 // Sit exactly on the wall.
                 x += n * (r - room.distance(s, x));
                 let speed = -n.dot(u);
-                self.impacts[i] = self.impacts[i].saturating_add(1);
+                self.hit_wall[i] = true;
                 let normal_impulse = if speed > solver.bounce_threshold {
                     u += (1.0 + e) * speed * n;
                     m * (1.0 + e) * speed
@@ -786,8 +766,10 @@ impl World {
     /// Pushes apart bodies that still overlap: balls along the line of
     /// centres, weighted by mass; tumblers only sideways over the floor.
     fn separate_overlaps(&mut self) {
-        let shape = &self.shape;
-        for c in &self.contacts {
+        let shape = self.shape.clone();
+        let shape = &shape;
+        for k in 0..self.contacts.len() {
+            let c = &self.contacts[k];
             match (c.a, c.b) {
                 (BodyRef::Ball(i), BodyRef::Ball(j)) => {
                     let d = self.balls.position[i] - self.balls.position[j];
@@ -795,10 +777,21 @@ impl World {
                     let overlap = self.balls.radius[i] + self.balls.radius[j] - dist;
                     if overlap > OVERLAP_SLOP && dist > 0.0 {
                         let n = d / dist;
-                        let (wi, wj) = (self.balls.inv_mass[i], self.balls.inv_mass[j]);
-                        let share = overlap / (wi + wj);
-                        self.balls.position[i] += n * (share * wi);
-                        self.balls.position[j] -= n * (share * wj);
+                        // Weighted by mass the pair's centre of mass stays put;
+                        // a ball lying on a wall cannot be pushed into it.
+                        let (wi, wj) =
+                            match (self.pressed_on_wall(i, n), self.pressed_on_wall(j, -n)) {
+                                (false, false) => (self.balls.inv_mass[i], self.balls.inv_mass[j]),
+                                (false, true) => (1.0, 0.0),
+                                (true, false) => (0.0, 1.0),
+                                (true, true) => continue,
+                            };
+                        let di = self.push_inside(i, n * (overlap * wi / (wi + wj)));
+                        let dj = self.push_inside(j, -n * (overlap * wj / (wi + wj)));
+                        let rise = self.balls.mass[i] * di.y + self.balls.mass[j] * dj.y;
+                        let part = self.pay_for_rise(&[i, j], rise * self.config.gravity);
+                        self.balls.position[i] += di * part;
+                        self.balls.position[j] += dj * part;
                     }
                 }
                 (BodyRef::Ball(i), BodyRef::Tumbler(t, s)) => {
@@ -807,7 +800,10 @@ impl World {
                     let dist = d.length();
                     let overlap = self.balls.radius[i] + shape.spheres[s].radius - dist;
                     if overlap > OVERLAP_SLOP && dist > 0.0 {
-                        self.balls.position[i] += d / dist * overlap;
+                        let push = self.push_inside(i, d / dist * overlap);
+                        let rise = self.balls.mass[i] * push.y * self.config.gravity;
+                        let part = self.pay_for_rise(&[i], rise);
+                        self.balls.position[i] += push * part;
                     }
                 }
                 (BodyRef::Tumbler(a, sa), BodyRef::Tumbler(b, sb)) => {
@@ -860,6 +856,40 @@ impl World {
                 .room
                 .clamp_sphere(self.balls.position[i], self.balls.radius[i]);
         }
+    }
+
+    /// The part of moving ball `i` by `push` that keeps it inside the room.
+    fn push_inside(&self, i: usize, push: DVec3) -> DVec3 {
+        let p = self.balls.position[i];
+        self.room.clamp_sphere(p + push, self.balls.radius[i]) - p
+    }
+
+    /// Whether ball `i` lies on a wall that a push along `dir` would drive it into.
+    fn pressed_on_wall(&self, i: usize, dir: DVec3) -> bool {
+        let (p, r) = (self.balls.position[i], self.balls.radius[i]);
+        Surface::ALL.iter().any(|&s| {
+            self.room.distance(s, p) - r <= TOUCH_SLOP && dir.dot(s.inward_normal()) < 0.0
+        })
+    }
+
+    /// Separating overlaps must not create energy: raising balls by
+    /// `energy` joules of potential energy is paid from their kinetic energy.
+    /// Returns the share of the push that was paid for (1 when it was free).
+    fn pay_for_rise(&mut self, balls: &[usize], energy: f64) -> f64 {
+        if energy <= 0.0 {
+            return 1.0;
+        }
+        let kinetic: f64 = balls.iter().map(|&i| self.balls.kinetic_energy(i)).sum();
+        let (keep, part) = if kinetic > energy {
+            (((kinetic - energy) / kinetic).sqrt(), 1.0)
+        } else {
+            (0.0, kinetic / energy)
+        };
+        for &i in balls {
+            self.balls.velocity[i] *= keep;
+            self.balls.spin[i] *= keep;
+        }
+        part
     }
 
     /// Moves the fireball in substeps short enough that it cannot pass

@@ -102,56 +102,27 @@ fn collide(m1: f64, m2: f64, v1: DVec3, v2: DVec3, offset: f64, e: f64) {
 }
 
 #[test]
-fn head_on_equal_masses() {
-    collide(
-        0.25,
-        0.25,
-        DVec3::new(3.0, 0.0, 0.0),
-        DVec3::new(-1.0, 0.0, 0.0),
-        0.0,
-        1.0,
-    );
-    collide(
-        0.25,
-        0.25,
-        DVec3::new(3.0, 0.0, 0.0),
-        DVec3::new(-1.0, 0.0, 0.0),
-        0.0,
-        0.6,
-    );
-}
-
-#[test]
-fn head_on_unequal_masses() {
-    collide(0.1, 0.9, DVec3::new(4.0, 0.0, 0.0), DVec3::ZERO, 0.0, 1.0);
-    collide(
-        2.0,
-        0.5,
-        DVec3::new(1.0, 0.0, 0.0),
-        DVec3::new(-2.5, 0.0, 0.0),
-        0.0,
-        0.85,
-    );
-}
-
-#[test]
-fn oblique_impacts() {
-    collide(
-        0.25,
-        0.25,
-        DVec3::new(3.0, 0.0, 0.0),
-        DVec3::ZERO,
-        0.13,
-        1.0,
-    );
-    collide(
-        0.4,
-        0.15,
-        DVec3::new(2.0, 0.5, 0.3),
-        DVec3::new(-1.0, 0.0, -0.2),
-        -0.09,
-        0.7,
-    );
+fn head_on_and_oblique_impacts_match_the_formulas() {
+    let x = |v: f64| DVec3::new(v, 0.0, 0.0);
+    // (m1, m2, v1, v2, sideways offset, restitution)
+    let cases = [
+        (0.25, 0.25, x(3.0), x(-1.0), 0.0, 1.0),
+        (0.25, 0.25, x(3.0), x(-1.0), 0.0, 0.6),
+        (0.1, 0.9, x(4.0), DVec3::ZERO, 0.0, 1.0),
+        (2.0, 0.5, x(1.0), x(-2.5), 0.0, 0.85),
+        (0.25, 0.25, x(3.0), DVec3::ZERO, 0.13, 1.0),
+        (
+            0.4,
+            0.15,
+            DVec3::new(2.0, 0.5, 0.3),
+            DVec3::new(-1.0, 0.0, -0.2),
+            -0.09,
+            0.7,
+        ),
+    ];
+    for (m1, m2, v1, v2, offset, e) in cases {
+        collide(m1, m2, v1, v2, offset, e);
+    }
 }
 
 #[test]

@@ -37,6 +37,13 @@ fn assert_clean_failure(output: &Output) -> String {
     err
 }
 
+/// Simulates one step of a scene file with `text` and returns the failure.
+fn failure_for_scene(name: &str, text: &str) -> String {
+    let path = scene_file(name, text);
+    let path = path.to_str().expect("UTF-8 path");
+    assert_clean_failure(&rolypoly(&["simulate", "--steps", "1", "--scene", path]))
+}
+
 fn json_lines(text: &str) -> Vec<serde_json::Value> {
     text.lines()
         .map(|line| serde_json::from_str(line).expect("each line is JSON"))
@@ -140,36 +147,20 @@ fn unwritable_trace_names_the_file() {
 
 #[test]
 fn unknown_key_names_file_line_and_key() {
-    let path = scene_file(
+    let err = failure_for_scene(
         "unknown-key.toml",
         "gravity = 9.81\n\n[balls]\ncount = 3\ncolour = [1, 0, 0]\n",
     );
-    let output = rolypoly(&[
-        "simulate",
-        "--steps",
-        "1",
-        "--scene",
-        path.to_str().unwrap(),
-    ]);
-    let err = assert_clean_failure(&output);
     assert!(err.contains("unknown-key.toml:5:"), "{err}");
     assert!(err.contains("balls.colour"), "{err}");
 }
 
 #[test]
 fn out_of_range_names_file_line_key_and_range() {
-    let path = scene_file(
+    let err = failure_for_scene(
         "out-of-range.toml",
         "[balls]\ncount = 3\nrestitution = 1.5\n",
     );
-    let output = rolypoly(&[
-        "simulate",
-        "--steps",
-        "1",
-        "--scene",
-        path.to_str().unwrap(),
-    ]);
-    let err = assert_clean_failure(&output);
     assert!(
         err.contains(
             "out-of-range.toml:3: balls.restitution = 1.5 is out of range: allowed 0 ..= 1"
