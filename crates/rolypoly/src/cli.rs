@@ -83,6 +83,112 @@ pub enum Command {
     /// Simulate a scene without a window or GPU and print a summary, or
     /// write a JSON Lines trace of every body, the energy and the events.
     Simulate(SimulateArgs),
+    /// Simulate a scene to a moment and write that frame to a PNG, with the
+    /// renderer the window uses, without a window.
+    Render(RenderArgs),
+    /// Write the tumbler's mesh, made from the scene's six collision
+    /// spheres, as a Wavefront OBJ file (the shipped assets/tumbler.obj is
+    /// made this way from the default scene).
+    MakeTumblerObj(MakeTumblerObjArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// Simulated time of the frame, in seconds.
+    #[arg(long, value_name = "S", default_value_t = 0.0, value_parser = parse_seconds)]
+    pub time: f64,
+
+    /// Frame size in pixels, WIDTHxHEIGHT (each 1 ..= 8192).
+    #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
+    pub size: (u32, u32),
+
+    /// Multisample anti-aliasing: 4 or 1 (off).
+    #[arg(long, value_name = "N", default_value_t = 4, value_parser = parse_msaa)]
+    pub msaa: u32,
+
+    /// Camera position and the point it looks at: EX,EY,EZ,TX,TY,TZ in metres
+    /// (default: the whole room from high up by the front wall).
+    #[arg(long, value_name = "EYE,TARGET", value_parser = parse_camera, allow_hyphen_values = true)]
+    pub camera: Option<[f32; 6]>,
+
+    /// Draw without the point light's shadows.
+    #[arg(long)]
+    pub no_shadows: bool,
+
+    /// Size of each of the six shadow faces, in texels (16 ..= 4096).
+    #[arg(long, value_name = "N", default_value_t = 1024, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub shadow_size: u32,
+
+    /// Use this OBJ file as the tumbler's mesh instead of the built-in one.
+    #[arg(long, value_name = "FILE")]
+    pub tumbler_obj: Option<PathBuf>,
+
+    /// Launch the fireball from the scene's spawn point at time 0.
+    #[arg(long)]
+    pub fireball: bool,
+
+    /// The PNG file to write.
+    #[arg(long, value_name = "FILE.png")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct MakeTumblerObjArgs {
+    /// The OBJ file to write.
+    #[arg(long, value_name = "FILE.obj")]
+    pub out: PathBuf,
+}
+
+/// 1 or 4 samples per pixel.
+fn parse_msaa(text: &str) -> Result<u32, String> {
+    match text.trim() {
+        "1" => Ok(1),
+        "4" => Ok(4),
+        _ => Err(format!("`{text}` is not allowed: use 1 or 4")),
+    }
+}
+
+/// `WIDTHxHEIGHT`, each side 1 ..= 8192.
+fn parse_size(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{text}` is not WIDTHxHEIGHT (for example 1280x720)"))?;
+    let side = |s: &str| -> Result<u32, String> {
+        let n: u32 = s
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{s}` is not a whole number of pixels"))?;
+        if (1..=8192).contains(&n) {
+            Ok(n)
+        } else {
+            Err(format!(
+                "{n} is out of range: each side is allowed 1 ..= 8192"
+            ))
+        }
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+/// Six comma-separated finite numbers.
+fn parse_camera(text: &str) -> Result<[f32; 6], String> {
+    let numbers: Vec<f32> = text
+        .split(',')
+        .map(|s| {
+            s.trim()
+                .parse::<f32>()
+                .map_err(|_| format!("`{s}` is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    let values: [f32; 6] = numbers
+        .try_into()
+        .map_err(|v: Vec<f32>| format!("expected 6 numbers EX,EY,EZ,TX,TY,TZ, got {}", v.len()))?;
+    if values.iter().any(|v| !v.is_finite()) {
+        return Err("camera numbers must be finite".into());
+    }
+    if values[..3] == values[3..] {
+        return Err("the camera must look at a point other than its own position".into());
+    }
+    Ok(values)
 }
 
 #[derive(Debug, Args)]

@@ -5,6 +5,7 @@
 //! pieces live here so that tests and later front ends can reuse them.
 
 pub mod cli;
+pub mod render;
 pub mod scene;
 pub mod simulate;
 pub mod trace;
@@ -44,6 +45,8 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Simulate(args)) => {
             simulate_command(&mut world, &scene_name, args, scene_args.seed, dt)
         }
+        Some(Command::Render(args)) => render::render(&mut world, args),
+        Some(Command::MakeTumblerObj(args)) => render::make_tumbler_obj(world.config(), args),
     }
 }
 

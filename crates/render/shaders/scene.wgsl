@@ -1,0 +1,209 @@
+// The lit scene, the light's bulb, and the depth-only shadow faces.
+//
+// Lighting is Blinn-Phong (ambient + diffuse + specular with the half
+// vector). The point light's shadows come from six depth faces (a cube
+// drawn as a 2D array, one layer per face). A fragment looks its distance up
+// through the same view-projection the face was drawn with, so the face
+// conventions of a cube sampler never come into it.
+
+struct Globals {
+    view_proj: mat4x4<f32>,
+    camera_pos: vec4<f32>,
+    // xyz: position of the light; w: unused.
+    light_pos: vec4<f32>,
+    // rgb: colour times intensity; w: ambient strength.
+    light_color: vec4<f32>,
+    // x: shadows on (1) or off (0); y: one texel of a shadow face (1 / size);
+    // z: depth bias; w: unused.
+    shadow: vec4<f32>,
+    light_view_proj: array<mat4x4<f32>, 6>,
+};
+
+@group(0) @binding(0) var<uniform> globals: Globals;
+@group(0) @binding(1) var shadow_map: texture_depth_2d_array;
+@group(0) @binding(2) var shadow_sampler: sampler_comparison;
+@group(0) @binding(3) var paint: texture_2d<f32>;
+@group(0) @binding(4) var paint_sampler: sampler;
+
+struct VertexIn {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+};
+
+// One drawn object. `material`: x = kind, y = specular strength,
+// z = shininess, w = emission.
+struct InstanceIn {
+    @location(3) m0: vec4<f32>,
+    @location(4) m1: vec4<f32>,
+    @location(5) m2: vec4<f32>,
+    @location(6) m3: vec4<f32>,
+    @location(7) color: vec4<f32>,
+    @location(8) material: vec4<f32>,
+};
+
+const KIND_PLAIN: f32 = 0.0;
+const KIND_WOOD: f32 = 1.0;
+const KIND_PAINTED: f32 = 2.0;
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+    // Flat: the same for the whole object, and compared exactly below.
+    @location(3) @interpolate(flat) color: vec4<f32>,
+    @location(4) @interpolate(flat) material: vec4<f32>,
+};
+
+fn model_of(i: InstanceIn) -> mat4x4<f32> {
+    return mat4x4<f32>(i.m0, i.m1, i.m2, i.m3);
+}
+
+@vertex
+fn vs_scene(v: VertexIn, i: InstanceIn) -> VertexOut {
+    let model = model_of(i);
+    let world = model * vec4<f32>(v.position, 1.0);
+    var out: VertexOut;
+    out.clip = globals.view_proj * world;
+    out.world = world.xyz;
+    // Models carry rotation and uniform scale only, so the model matrix
+    // turns normals correctly once they are renormalised.
+    out.normal = normalize((model * vec4<f32>(v.normal, 0.0)).xyz);
+    out.uv = v.uv;
+    out.color = i.color;
+    out.material = i.material;
+    return out;
+}
+
+// --- procedural surfaces -------------------------------------------------
+
+fn hash2(p: vec2<f32>) -> f32 {
+    let q = fract(p * vec2<f32>(123.34, 456.21));
+    let r = q + dot(q, q + 45.32);
+    return fract(r.x * r.y);
+}
+
+fn value_noise(p: vec2<f32>) -> f32 {
+    let i = floor(p);
+    let f = fract(p);
+    let u = f * f * (3.0 - 2.0 * f);
+    let a = hash2(i);
+    let b = hash2(i + vec2<f32>(1.0, 0.0));
+    let c = hash2(i + vec2<f32>(0.0, 1.0));
+    let d = hash2(i + vec2<f32>(1.0, 1.0));
+    return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
+}
+
+// Planks 0.2 m wide running along x, each with its own shade and grain.
+fn wood(base: vec3<f32>, p: vec2<f32>) -> vec3<f32> {
+    let plank_width = 0.2;
+    let row = floor(p.y / plank_width);
+    let along = p.x + hash2(vec2<f32>(row, 7.0)) * 3.0;
+    let plank = floor(along / 1.6);
+    let id = vec2<f32>(row, plank);
+    let shade = 0.82 + 0.3 * hash2(id);
+    let grain_pos = vec2<f32>(along * 3.0, (p.y - row * plank_width) * 40.0 + hash2(id) * 10.0);
+    let grain = value_noise(grain_pos * vec2<f32>(0.5, 1.0)) * 0.6 + value_noise(grain_pos * 4.0) * 0.4;
+    let rings = 0.5 + 0.5 * sin(grain * 12.0 + along * 2.0);
+    // Dark seams between planks.
+    let v = fract(p.y / plank_width);
+    let u = fract(along / 1.6);
+    let seam = smoothstep(0.0, 0.03, v) * smoothstep(1.0, 0.97, v) * smoothstep(0.0, 0.004, u) * smoothstep(1.0, 0.996, u);
+    return base * shade * (0.78 + 0.22 * rings) * (0.55 + 0.45 * seam);
+}
+
+// A faint plaster texture, so walls are not flat paint.
+fn plaster(base: vec3<f32>, p: vec3<f32>) -> vec3<f32> {
+    let n = value_noise(p.xy * 9.0 + p.zz * 5.0) * 0.5 + value_noise(p.zy * 23.0 + p.xx * 3.0) * 0.5;
+    return base * (0.93 + 0.07 * n);
+}
+
+// --- shadows --------------------------------------------------------------
+
+fn shadow_face(d: vec3<f32>) -> i32 {
+    let a = abs(d);
+    if a.x >= a.y && a.x >= a.z {
+        return select(1, 0, d.x > 0.0);
+    }
+    if a.y >= a.z {
+        return select(3, 2, d.y > 0.0);
+    }
+    return select(5, 4, d.z > 0.0);
+}
+
+// 1 where the light reaches the point, 0 in shadow, soft in between.
+fn light_visibility(world: vec3<f32>, normal: vec3<f32>) -> f32 {
+    if globals.shadow.x < 0.5 {
+        return 1.0;
+    }
+    let texel = globals.shadow.y;
+    let to_point = world - globals.light_pos.xyz;
+    // Normal offset: a shadow texel covers more ground further from the
+    // light, so push the lookup off the surface by about one texel there.
+    let distance = length(to_point);
+    let lookup = world + normal * (2.5 * texel * distance);
+    let face = shadow_face(lookup - globals.light_pos.xyz);
+    let clip = globals.light_view_proj[face] * vec4<f32>(lookup, 1.0);
+    let ndc = clip.xyz / clip.w;
+    let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
+    let reference = ndc.z - globals.shadow.z;
+    // 4 x 4 taps, each a bilinear 2 x 2 comparison: soft edges.
+    var lit = 0.0;
+    for (var y = 0; y < 4; y++) {
+        for (var x = 0; x < 4; x++) {
+            let offset = (vec2<f32>(f32(x), f32(y)) - 1.5) * texel * 1.2;
+            lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + offset, face, reference);
+        }
+    }
+    return lit / 16.0;
+}
+
+// --- passes ----------------------------------------------------------------
+
+@fragment
+fn fs_lit(in: VertexOut) -> @location(0) vec4<f32> {
+    let kind = in.material.x;
+    var base = in.color.rgb;
+    if kind == KIND_WOOD {
+        base = wood(base, in.world.xz);
+    } else if kind == KIND_PAINTED {
+        let p = textureSampleLevel(paint, paint_sampler, in.uv, 0.0);
+        // Alpha marks the paint that takes the tumbler's own colour.
+        base = mix(p.rgb, p.rgb * in.color.rgb, p.a);
+    } else if kind == KIND_PLAIN {
+        base = plaster(base, in.world);
+    }
+
+    let n = normalize(in.normal);
+    let to_light = globals.light_pos.xyz - in.world;
+    let distance = length(to_light);
+    let l = to_light / distance;
+    let v = normalize(globals.camera_pos.xyz - in.world);
+    let h = normalize(l + v);
+    let attenuation = 1.0 / (1.0 + 0.05 * distance + 0.04 * distance * distance);
+    let light = globals.light_color.rgb * attenuation;
+
+    let ambient = globals.light_color.w * base;
+    let diffuse = base * max(dot(n, l), 0.0) * light;
+    let specular = in.material.y * pow(max(dot(n, h), 0.0), in.material.z) * light * step(0.0, dot(n, l));
+    let visible = light_visibility(in.world, n);
+    return vec4<f32>(ambient + visible * (diffuse + specular), 1.0);
+}
+
+// Unlit and glowing: the light's bulb (and, with it, anything emissive).
+@fragment
+fn fs_emissive(in: VertexOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(in.color.rgb * in.material.w, 1.0);
+}
+
+struct ShadowFace {
+    view_proj: mat4x4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> shadow_face_uniform: ShadowFace;
+
+@vertex
+fn vs_shadow(v: VertexIn, i: InstanceIn) -> @builtin(position) vec4<f32> {
+    return shadow_face_uniform.view_proj * (model_of(i) * vec4<f32>(v.position, 1.0));
+}

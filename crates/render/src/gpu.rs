@@ -1,0 +1,116 @@
+//! Finding a graphics adapter and opening a device on it.
+
+use thiserror::Error;
+
+/// Why rendering could not start or finish.
+#[derive(Debug, Error)]
+pub enum RenderError {
+    #[error(
+        "no usable graphics adapter was found (backends tried: {backends}). \
+         Install a Vulkan driver (on Debian or Ubuntu: `apt-get install mesa-vulkan-drivers`, \
+         which includes the lavapipe software renderer), or try the OpenGL backend with \
+         WGPU_BACKEND=gl"
+    )]
+    NoAdapter { backends: String },
+    #[error("the graphics adapter {adapter} refused to open a device: {source}")]
+    NoDevice {
+        adapter: String,
+        #[source]
+        source: wgpu::RequestDeviceError,
+    },
+    #[error("reading the rendered frame back failed: {0}")]
+    Readback(String),
+    #[error("tumbler mesh `{origin}`: {message}")]
+    Mesh { origin: String, message: String },
+    #[error("frame size {width}x{height} is not allowed: {reason}")]
+    Size {
+        width: u32,
+        height: u32,
+        reason: String,
+    },
+}
+
+/// An open device and its queue.
+pub struct Gpu {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub adapter: wgpu::Adapter,
+}
+
+impl Gpu {
+    /// Opens the best adapter available without a window. `WGPU_BACKEND`
+    /// (vulkan, gl, metal, dx12) chooses the backends; without it the
+    /// primary ones (Vulkan, Metal, DX12) are tried first, then OpenGL.
+    pub fn headless() -> Result<Gpu, RenderError> {
+        let from_env = wgpu::Backends::from_env();
+        let attempts = match from_env {
+            Some(chosen) => vec![chosen],
+            None => vec![wgpu::Backends::PRIMARY, wgpu::Backends::GL],
+        };
+        for backends in &attempts {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+            desc.backends = *backends;
+            let instance = wgpu::Instance::new(desc);
+            let found = pollster::block_on(
+                instance.request_adapter(&wgpu::RequestAdapterOptions {
+                    power_preference: wgpu::PowerPreference::from_env()
+                        .unwrap_or(wgpu::PowerPreference::HighPerformance),
+                    force_fallback_adapter: false,
+                    compatible_surface: None,
+                    apply_limit_buckets: false,
+                }),
+            );
+            if let Ok(adapter) = found {
+                return Gpu::open(adapter);
+            }
+        }
+        let backends = attempts
+            .iter()
+            .map(|b| format!("{b:?}"))
+            .collect::<Vec<_>>()
+            .join(", then ");
+        Err(RenderError::NoAdapter { backends })
+    }
+
+    /// Opens a device on `adapter` with the limits this renderer needs.
+    pub fn open(adapter: wgpu::Adapter) -> Result<Gpu, RenderError> {
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("rolypoly"),
+            required_features: wgpu::Features::empty(),
+            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|source| RenderError::NoDevice {
+            adapter: format!("{} ({:?})", info.name, info.backend),
+            source,
+        })?;
+        Ok(Gpu {
+            device,
+            queue,
+            adapter,
+        })
+    }
+
+    /// "name (backend)", for logs and benchmark reports.
+    pub fn describe(&self) -> String {
+        let info = self.adapter.get_info();
+        format!("{} ({:?})", info.name, info.backend)
+    }
+
+    /// The largest multisample count up to `wanted` that the adapter supports
+    /// for the HDR target.
+    pub fn msaa_samples(&self, wanted: u32) -> u32 {
+        let flags = self
+            .adapter
+            .get_texture_format_features(crate::renderer::HDR_FORMAT)
+            .flags;
+        [wanted, 4, 2, 1]
+            .into_iter()
+            .filter(|&n| n <= wanted)
+            .find(|&n| n == 1 || flags.sample_count_supported(n))
+            .unwrap_or(1)
+    }
+}

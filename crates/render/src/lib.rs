@@ -1,0 +1,29 @@
+//! The rolypoly renderer, on wgpu.
+//!
+//! One frame: the point light's shadow (six depth faces), the room, balls and
+//! tumblers lit with Blinn-Phong in linear HDR with MSAA, the glowing bulb,
+//! then tone mapping to the output. The same [`Renderer`] draws into a
+//! window's surface or, through [`OffscreenTarget`], into an image.
+//!
+//! It draws a [`SceneView`], plain data read from the physics world.
+
+mod camera;
+mod gpu;
+mod mesh;
+mod offscreen;
+mod paint;
+mod renderer;
+mod shadow;
+mod snapshot;
+mod tumbler_mesh;
+mod view;
+
+pub use camera::Camera;
+pub use gpu::{Gpu, RenderError};
+pub use mesh::{MeshData, Vertex};
+pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};
+pub use paint::tumbler_paint;
+pub use renderer::{FrameStats, HDR_FORMAT, RenderSettings, Renderer};
+pub use snapshot::Snapshot;
+pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
+pub use view::{BallView, Light, SceneView, TumblerView};

@@ -1,0 +1,813 @@
+//! The frame: shadow faces, the lit opaque scene, the unlit bulb, then tone
+//! mapping to the output (R4's order), with MSAA and an HDR target.
+
+use crate::camera::Camera;
+use crate::gpu::{Gpu, RenderError};
+use crate::mesh::{GpuMesh, MeshData, Vertex};
+use crate::shadow::{self, ShadowCube};
+use crate::view::SceneView;
+use bytemuck::{Pod, Zeroable};
+use glam::{Mat4, Vec3};
+use std::time::{Duration, Instant};
+use wgpu::util::DeviceExt;
+
+/// The scene is lit in linear HDR and tone-mapped at the end, so that
+/// glowing things can be brighter than white.
+pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// How to draw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Multisample count: 4 or 1 (lowered if the adapter cannot).
+    pub msaa: u32,
+    /// Size of one shadow face in texels.
+    pub shadow_size: u32,
+    pub shadows: bool,
+    pub exposure: f32,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            msaa: 4,
+            shadow_size: 1024,
+            shadows: true,
+            exposure: 1.0,
+        }
+    }
+}
+
+/// What a frame cost.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FrameStats {
+    pub draw_calls: u32,
+    /// Time spent in our own code building and recording the frame.
+    pub cpu_time: Duration,
+}
+
+/// Material kinds, as the shader knows them.
+#[derive(Clone, Copy)]
+enum Kind {
+    Plain = 0,
+    Wood = 1,
+    Painted = 2,
+    Glossy = 3,
+}
+
+/// Per-object data: model matrix, colour, material.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct Instance {
+    model: [[f32; 4]; 4],
+    color: [f32; 4],
+    /// kind, specular strength, shininess, emission.
+    material: [f32; 4],
+}
+
+impl Instance {
+    const ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
+        3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4, 7 => Float32x4, 8 => Float32x4
+    ];
+
+    fn layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Instance>() as u64,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &Self::ATTRIBUTES,
+        }
+    }
+
+    fn new(
+        model: Mat4,
+        color: Vec3,
+        kind: Kind,
+        specular: f32,
+        shininess: f32,
+        emission: f32,
+    ) -> Instance {
+        Instance {
+            model: model.to_cols_array_2d(),
+            color: color.extend(1.0).to_array(),
+            material: [kind as u32 as f32, specular, shininess, emission],
+        }
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct Globals {
+    view_proj: [[f32; 4]; 4],
+    camera_pos: [f32; 4],
+    light_pos: [f32; 4],
+    light_color: [f32; 4],
+    shadow: [f32; 4],
+    light_view_proj: [[[f32; 4]; 4]; 6],
+}
+
+/// Size-dependent render targets.
+struct Targets {
+    width: u32,
+    height: u32,
+    /// Multisampled colour (absent at 1x, where `hdr` is drawn directly).
+    msaa: Option<wgpu::TextureView>,
+    hdr: wgpu::TextureView,
+    depth: wgpu::TextureView,
+    tonemap_bind_group: wgpu::BindGroup,
+}
+
+/// Where each kind of object sits in the instance buffer this frame.
+#[derive(Default)]
+struct Ranges {
+    room: std::ops::Range<u32>,
+    balls: std::ops::Range<u32>,
+    tumblers: std::ops::Range<u32>,
+    bulb: std::ops::Range<u32>,
+}
+
+pub struct Renderer {
+    settings: RenderSettings,
+    output_format: wgpu::TextureFormat,
+    scene_pipeline: wgpu::RenderPipeline,
+    emissive_pipeline: wgpu::RenderPipeline,
+    shadow_pipeline: wgpu::RenderPipeline,
+    tonemap_pipeline: wgpu::RenderPipeline,
+    tonemap_layout: wgpu::BindGroupLayout,
+    globals: wgpu::Buffer,
+    tonemap_params: wgpu::Buffer,
+    scene_bind_group: wgpu::BindGroup,
+    shadow_cube: ShadowCube,
+    sphere: GpuMesh,
+    quad: GpuMesh,
+    tumbler: GpuMesh,
+    instance_buffer: wgpu::Buffer,
+    instance_capacity: usize,
+    instances: Vec<Instance>,
+    targets: Option<Targets>,
+}
+
+impl Renderer {
+    /// Builds the pipelines for frames in `output_format`. `tumbler_mesh`
+    /// and `paint` are the tumbler's mesh and texture.
+    pub fn new(
+        gpu: &Gpu,
+        settings: RenderSettings,
+        output_format: wgpu::TextureFormat,
+        tumbler_mesh: &MeshData,
+        paint: &image::RgbaImage,
+    ) -> Renderer {
+        let device = &gpu.device;
+        let settings = RenderSettings {
+            msaa: gpu.msaa_samples(settings.msaa),
+            ..settings
+        };
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("scene.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/scene.wgsl").into()),
+        });
+        let tonemap_shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("tonemap.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/tonemap.wgsl").into()),
+        });
+
+        let scene_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("scene"),
+            entries: &[
+                uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2Array,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let face_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shadow face"),
+            entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX)],
+        });
+        let tonemap_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("tonemap"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                uniform_entry(1, wgpu::ShaderStages::FRAGMENT),
+            ],
+        });
+
+        let globals = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("globals"),
+            size: std::mem::size_of::<Globals>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let tonemap_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("tonemap params"),
+            contents: bytemuck::cast_slice(&[settings.exposure, 0.0, 0.0, 0.0]),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let shadow_cube = ShadowCube::new(device, settings.shadow_size, &face_layout);
+        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("shadow comparison"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            compare: Some(wgpu::CompareFunction::LessEqual),
+            ..Default::default()
+        });
+        let paint_view = upload_texture(gpu, "tumbler paint", paint);
+        let paint_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("paint"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        let scene_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("scene"),
+            layout: &scene_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: globals.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&shadow_cube.array_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&shadow_sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&paint_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::Sampler(&paint_sampler),
+                },
+            ],
+        });
+
+        let scene_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("scene"),
+                bind_group_layouts: &[Some(&scene_layout)],
+                immediate_size: 0,
+            });
+        let buffers = [Some(Vertex::layout()), Some(Instance::layout())];
+        let scene_pipeline_for = |entry: &str, label: &str| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&scene_pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some("vs_scene"),
+                    compilation_options: Default::default(),
+                    buffers: &buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: Some(wgpu::Face::Back),
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: settings.msaa,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets: &[Some(HDR_FORMAT.into())],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let scene_pipeline = scene_pipeline_for("fs_lit", "lit");
+        let emissive_pipeline = scene_pipeline_for("fs_emissive", "emissive");
+
+        let shadow_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("shadow"),
+                bind_group_layouts: &[Some(&face_layout)],
+                immediate_size: 0,
+            });
+        let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shadow"),
+            layout: Some(&shadow_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_shadow"),
+                compilation_options: Default::default(),
+                buffers: &buffers,
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: shadow::SHADOW_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                // Slope-scaled bias keeps surfaces from shadowing themselves (acne).
+                bias: wgpu::DepthBiasState {
+                    constant: 2,
+                    slope_scale: 2.0,
+                    clamp: 0.0,
+                },
+            }),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        });
+
+        let tonemap_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("tonemap"),
+                bind_group_layouts: &[Some(&tonemap_layout)],
+                immediate_size: 0,
+            });
+        let tonemap_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("tonemap"),
+            layout: Some(&tonemap_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &tonemap_shader,
+                entry_point: Some("vs_fullscreen"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &tonemap_shader,
+                entry_point: Some("fs_tonemap"),
+                compilation_options: Default::default(),
+                targets: &[Some(output_format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+
+        let instance_capacity = 256;
+        Renderer {
+            settings,
+            output_format,
+            scene_pipeline,
+            emissive_pipeline,
+            shadow_pipeline,
+            tonemap_pipeline,
+            tonemap_layout,
+            globals,
+            tonemap_params,
+            scene_bind_group,
+            shadow_cube,
+            sphere: GpuMesh::upload(device, "sphere", &MeshData::sphere(24, 32)),
+            quad: GpuMesh::upload(device, "quad", &MeshData::quad()),
+            tumbler: GpuMesh::upload(device, "tumbler", tumbler_mesh),
+            instance_buffer: instance_buffer(device, instance_capacity),
+            instance_capacity,
+            instances: Vec::new(),
+            targets: None,
+        }
+    }
+
+    pub fn settings(&self) -> RenderSettings {
+        self.settings
+    }
+
+    pub fn output_format(&self) -> wgpu::TextureFormat {
+        self.output_format
+    }
+
+    /// Draws `view` seen by `camera` into `output` (of the output format).
+    pub fn render(
+        &mut self,
+        gpu: &Gpu,
+        view: &SceneView,
+        camera: &Camera,
+        output: &wgpu::TextureView,
+        width: u32,
+        height: u32,
+    ) -> Result<FrameStats, RenderError> {
+        if width == 0 || height == 0 {
+            return Err(RenderError::Size {
+                width,
+                height,
+                reason: "a frame needs at least one pixel".into(),
+            });
+        }
+        let start = Instant::now();
+        self.ensure_targets(gpu, width, height);
+        let ranges = self.build_instances(view);
+        self.ensure_instance_capacity(gpu);
+        gpu.queue.write_buffer(
+            &self.instance_buffer,
+            0,
+            bytemuck::cast_slice(&self.instances),
+        );
+
+        let faces = shadow::face_view_projections(view.light.position);
+        self.shadow_cube.update(&gpu.queue, &faces);
+        let globals = Globals {
+            view_proj: camera
+                .view_projection(width as f32 / height as f32)
+                .to_cols_array_2d(),
+            camera_pos: camera.eye.extend(1.0).to_array(),
+            light_pos: view.light.position.extend(1.0).to_array(),
+            light_color: view.light.color.extend(view.light.ambient).to_array(),
+            shadow: [
+                if self.settings.shadows { 1.0 } else { 0.0 },
+                1.0 / self.shadow_cube.size as f32,
+                0.00002,
+                0.0,
+            ],
+            light_view_proj: faces.map(|m| m.to_cols_array_2d()),
+        };
+        gpu.queue
+            .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("frame"),
+            });
+        let mut draw_calls = 0;
+        if self.settings.shadows {
+            for face in 0..6 {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("shadow face"),
+                    color_attachments: &[],
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: &self.shadow_cube.face_views[face],
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Store,
+                        }),
+                        stencil_ops: None,
+                    }),
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(&self.shadow_pipeline);
+                pass.set_bind_group(0, &self.shadow_cube.face_bind_groups[face], &[]);
+                pass.set_vertex_buffer(1, self.instance_buffer.slice(..));
+                // The room's walls cast no shadow inside it; balls and tumblers do.
+                draw_calls += draw(&mut pass, &self.sphere, ranges.balls.clone());
+                draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
+            }
+        }
+        let targets = self
+            .targets
+            .as_ref()
+            .ok_or_else(|| RenderError::Readback("no render targets".into()))?;
+        {
+            let (view_target, resolve) = match &targets.msaa {
+                Some(msaa) => (msaa, Some(&targets.hdr)),
+                None => (&targets.hdr, None),
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("scene"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: view_target,
+                    depth_slice: None,
+                    resolve_target: resolve,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color {
+                            r: 0.01,
+                            g: 0.01,
+                            b: 0.012,
+                            a: 1.0,
+                        }),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_bind_group(0, &self.scene_bind_group, &[]);
+            pass.set_vertex_buffer(1, self.instance_buffer.slice(..));
+            // Lit and opaque first ...
+            pass.set_pipeline(&self.scene_pipeline);
+            draw_calls += draw(&mut pass, &self.quad, ranges.room.clone());
+            draw_calls += draw(&mut pass, &self.sphere, ranges.balls.clone());
+            draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
+            // ... then what glows and is not lit.
+            pass.set_pipeline(&self.emissive_pipeline);
+            draw_calls += draw(&mut pass, &self.sphere, ranges.bulb.clone());
+        }
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("tonemap"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: output,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.tonemap_pipeline);
+            pass.set_bind_group(0, &targets.tonemap_bind_group, &[]);
+            pass.draw(0..3, 0..1);
+            draw_calls += 1;
+        }
+        let cpu_time = start.elapsed();
+        gpu.queue.submit([encoder.finish()]);
+        Ok(FrameStats {
+            draw_calls,
+            cpu_time,
+        })
+    }
+
+    /// Fills the instance list: room, balls, tumblers, bulb.
+    fn build_instances(&mut self, view: &SceneView) -> Ranges {
+        self.instances.clear();
+        let mut ranges = Ranges::default();
+        let start = self.instances.len() as u32;
+        let size = view.room_size;
+        let (hx, hz) = (0.5 * size.x, 0.5 * size.z);
+        // Each wall maps the unit quad's x and y onto two directions whose
+        // cross product is the wall's inward normal.
+        let walls = [
+            (
+                Vec3::X * size.x,
+                Vec3::NEG_Z * size.z,
+                Vec3::new(-hx, 0.0, hz),
+            ),
+            (
+                Vec3::X * size.x,
+                Vec3::Z * size.z,
+                Vec3::new(-hx, size.y, -hz),
+            ),
+            (Vec3::Y * size.y, Vec3::Z * size.z, Vec3::new(-hx, 0.0, -hz)),
+            (Vec3::Z * size.z, Vec3::Y * size.y, Vec3::new(hx, 0.0, -hz)),
+            (Vec3::X * size.x, Vec3::Y * size.y, Vec3::new(-hx, 0.0, -hz)),
+            (Vec3::Y * size.y, Vec3::X * size.x, Vec3::new(-hx, 0.0, hz)),
+        ];
+        for (i, (u, v, origin)) in walls.into_iter().enumerate() {
+            let normal = u.cross(v).normalize();
+            let model = Mat4::from_cols(
+                u.extend(0.0),
+                v.extend(0.0),
+                normal.extend(0.0),
+                origin.extend(1.0),
+            );
+            let (kind, specular, shininess) = if i == 0 {
+                (Kind::Wood, 0.35, 40.0)
+            } else {
+                (Kind::Plain, 0.04, 8.0)
+            };
+            self.instances.push(Instance::new(
+                model,
+                view.room_colors[i],
+                kind,
+                specular,
+                shininess,
+                0.0,
+            ));
+        }
+        ranges.room = start..self.instances.len() as u32;
+
+        let start = self.instances.len() as u32;
+        for b in &view.balls {
+            let model = Mat4::from_scale_rotation_translation(
+                Vec3::splat(b.radius),
+                glam::Quat::IDENTITY,
+                b.position,
+            );
+            self.instances
+                .push(Instance::new(model, b.color, Kind::Glossy, 0.9, 110.0, 0.0));
+        }
+        ranges.balls = start..self.instances.len() as u32;
+
+        let start = self.instances.len() as u32;
+        for t in &view.tumblers {
+            self.instances.push(Instance::new(
+                t.model(),
+                t.color,
+                Kind::Painted,
+                0.55,
+                60.0,
+                0.0,
+            ));
+        }
+        ranges.tumblers = start..self.instances.len() as u32;
+
+        let start = self.instances.len() as u32;
+        let light = view.light;
+        let model = Mat4::from_scale_rotation_translation(
+            Vec3::splat(light.bulb_radius),
+            glam::Quat::IDENTITY,
+            light.position,
+        );
+        let glow = light.color / light.color.max_element().max(1e-6);
+        self.instances
+            .push(Instance::new(model, glow, Kind::Plain, 0.0, 1.0, 12.0));
+        ranges.bulb = start..self.instances.len() as u32;
+        ranges
+    }
+
+    fn ensure_instance_capacity(&mut self, gpu: &Gpu) {
+        if self.instances.len() > self.instance_capacity {
+            self.instance_capacity = self.instances.len().next_power_of_two();
+            self.instance_buffer = instance_buffer(&gpu.device, self.instance_capacity);
+        }
+    }
+
+    fn ensure_targets(&mut self, gpu: &Gpu, width: u32, height: u32) {
+        if self
+            .targets
+            .as_ref()
+            .is_some_and(|t| t.width == width && t.height == height)
+        {
+            return;
+        }
+        let device = &gpu.device;
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        };
+        let texture = |label, format, samples, usage| {
+            device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size,
+                    mip_level_count: 1,
+                    sample_count: samples,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default())
+        };
+        let samples = self.settings.msaa;
+        let hdr = texture(
+            "hdr",
+            HDR_FORMAT,
+            1,
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
+        let msaa = (samples > 1).then(|| {
+            texture(
+                "hdr msaa",
+                HDR_FORMAT,
+                samples,
+                wgpu::TextureUsages::RENDER_ATTACHMENT,
+            )
+        });
+        let depth = texture(
+            "depth",
+            DEPTH_FORMAT,
+            samples,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        );
+        let tonemap_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("tonemap"),
+            layout: &self.tonemap_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&hdr),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: self.tonemap_params.as_entire_binding(),
+                },
+            ],
+        });
+        self.targets = Some(Targets {
+            width,
+            height,
+            msaa,
+            hdr,
+            depth,
+            tonemap_bind_group,
+        });
+    }
+}
+
+fn draw(pass: &mut wgpu::RenderPass, mesh: &GpuMesh, instances: std::ops::Range<u32>) -> u32 {
+    if instances.is_empty() {
+        return 0;
+    }
+    pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+    pass.draw_indexed(0..mesh.index_count, 0, instances);
+    1
+}
+
+fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+fn instance_buffer(device: &wgpu::Device, capacity: usize) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("instances"),
+        size: (capacity * std::mem::size_of::<Instance>()) as u64,
+        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+fn upload_texture(gpu: &Gpu, label: &str, image: &image::RgbaImage) -> wgpu::TextureView {
+    let size = wgpu::Extent3d {
+        width: image.width(),
+        height: image.height(),
+        depth_or_array_layers: 1,
+    };
+    let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    gpu.queue.write_texture(
+        wgpu::TexelCopyTextureInfo {
+            texture: &texture,
+            mip_level: 0,
+            origin: wgpu::Origin3d::ZERO,
+            aspect: wgpu::TextureAspect::All,
+        },
+        image.as_raw(),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * image.width()),
+            rows_per_image: None,
+        },
+        size,
+    );
+    texture.create_view(&Default::default())
+}

@@ -1,0 +1,105 @@
+//! What the renderer draws: plain data, read from the physics world.
+//!
+//! The renderer never reaches into the physics; it is handed a `SceneView`.
+
+use glam::{Mat4, Quat, Vec3};
+use rolypoly_physics::World;
+
+/// The point light at the centre of the ceiling (S2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    pub position: Vec3,
+    /// Linear RGB colour times intensity.
+    pub color: Vec3,
+    /// Strength of the ambient term (the only light in shadow).
+    pub ambient: f32,
+    /// Radius of the visible bulb.
+    pub bulb_radius: f32,
+}
+
+impl Light {
+    /// Warm light, hanging a little below the ceiling's centre.
+    pub fn ceiling_centre(room_size: Vec3) -> Light {
+        Light {
+            position: Vec3::new(0.0, room_size.y - 0.25, 0.0),
+            color: Vec3::new(1.0, 0.86, 0.68) * 3.2,
+            ambient: 0.16,
+            bulb_radius: 0.09,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BallView {
+    pub position: Vec3,
+    pub radius: f32,
+    pub color: Vec3,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TumblerView {
+    /// Centre of the bottom sphere (the mesh's origin).
+    pub position: Vec3,
+    pub orientation: Quat,
+    /// 1 normally; larger to show that it is held.
+    pub scale: f32,
+    pub color: Vec3,
+}
+
+impl TumblerView {
+    pub fn model(&self) -> Mat4 {
+        Mat4::from_scale_rotation_translation(
+            Vec3::splat(self.scale),
+            self.orientation,
+            self.position,
+        )
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneView {
+    pub room_size: Vec3,
+    /// Floor, ceiling, left, right, back, front.
+    pub room_colors: [Vec3; 6],
+    pub light: Light,
+    pub balls: Vec<BallView>,
+    pub tumblers: Vec<TumblerView>,
+}
+
+impl SceneView {
+    /// Reads the world as it is now. `held` is the tumbler to draw enlarged.
+    pub fn from_world(world: &World, held: Option<usize>) -> SceneView {
+        let config = world.config();
+        let room_size = config.room.size.as_vec3();
+        let b = world.balls();
+        let balls = (0..b.len())
+            .filter(|&i| b.alive()[i])
+            .map(|i| BallView {
+                position: b.positions()[i].as_vec3(),
+                radius: b.radii()[i] as f32,
+                color: Vec3::from_array(world.tint_color(b.tints()[i])),
+            })
+            .collect();
+        let colors = &config.tumblers.colors;
+        let tumblers = world
+            .tumblers()
+            .iter()
+            .enumerate()
+            .map(|(i, t)| TumblerView {
+                position: t.bottom_center().as_vec3(),
+                orientation: t.orientation().as_quat(),
+                scale: if held == Some(i) { 1.15 } else { 1.0 },
+                color: colors
+                    .get(i % colors.len().max(1))
+                    .map_or(Vec3::ONE, |c| Vec3::from_array(*c)),
+            })
+            .collect();
+        SceneView {
+            room_size,
+            room_colors: config.room.colors.map(Vec3::from_array),
+            light: Light::ceiling_centre(room_size),
+            balls,
+            tumblers,
+        }
+    }
+}

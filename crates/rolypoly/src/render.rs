@@ -1,0 +1,78 @@
+//! `rolypoly render` and `rolypoly make-tumbler-obj`: frames and meshes
+//! without a window.
+
+use std::path::Path;
+
+use anyhow::Context;
+use glam::Vec3;
+use rolypoly_physics::{World, WorldConfig};
+use rolypoly_render::{Camera, MeshData, RenderSettings, SceneView, Snapshot};
+
+use crate::cli::{MakeTumblerObjArgs, RenderArgs, steps_for};
+
+/// Simulates `world` to the requested time and writes that frame.
+pub fn render(world: &mut World, args: &RenderArgs) -> anyhow::Result<()> {
+    let config = world.config().clone();
+    if args.fireball {
+        world.launch_fireball(None);
+    }
+    for _ in 0..steps_for(args.time, config.solver.dt) {
+        world.step();
+        world.drain_events().for_each(drop);
+    }
+    let mesh = args.tumbler_obj.as_deref().map(read_obj).transpose()?;
+    let settings = RenderSettings {
+        msaa: args.msaa,
+        shadow_size: args.shadow_size,
+        shadows: !args.no_shadows,
+        ..RenderSettings::default()
+    };
+    let (width, height) = args.size;
+    let mut snapshot = Snapshot::new(&config, settings, width, height, mesh)?;
+    let camera = match args.camera {
+        Some([ex, ey, ez, tx, ty, tz]) => Camera {
+            eye: Vec3::new(ex, ey, ez),
+            target: Vec3::new(tx, ty, tz),
+            ..Camera::overview(config.room.size.as_vec3())
+        },
+        None => Camera::overview(config.room.size.as_vec3()),
+    };
+    let image = snapshot.capture(&SceneView::from_world(world, None), &camera)?;
+    image
+        .save_with_format(&args.out, image::ImageFormat::Png)
+        .with_context(|| format!("cannot write `{}`", args.out.display()))?;
+    println!(
+        "wrote {} ({width}x{height}, t = {:.3} s, MSAA {}x, shadows {}, on {})",
+        args.out.display(),
+        world.time(),
+        snapshot.renderer.settings().msaa,
+        if args.no_shadows { "off" } else { "on" },
+        snapshot.gpu.describe()
+    );
+    Ok(())
+}
+
+/// Reads a tumbler mesh from an OBJ file.
+pub fn read_obj(path: &Path) -> anyhow::Result<MeshData> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read tumbler mesh `{}`", path.display()))?;
+    Ok(rolypoly_render::from_obj(
+        &text,
+        &path.display().to_string(),
+    )?)
+}
+
+/// Writes the tumbler mesh made from the scene's spheres.
+pub fn make_tumbler_obj(config: &WorldConfig, args: &MakeTumblerObjArgs) -> anyhow::Result<()> {
+    let mesh = rolypoly_render::tumbler_mesh(&config.tumblers.spheres);
+    let text = rolypoly_render::to_obj(&mesh, rolypoly_render::OBJ_HEADER);
+    std::fs::write(&args.out, text)
+        .with_context(|| format!("cannot write `{}`", args.out.display()))?;
+    println!(
+        "wrote {} ({} vertices, {} triangles)",
+        args.out.display(),
+        mesh.vertices.len(),
+        mesh.indices.len() / 3
+    );
+    Ok(())
+}
