@@ -403,7 +403,7 @@ impl Renderer {
             tonemap_params,
             scene_bind_group,
             shadow_cube,
-            sphere: GpuMesh::upload(device, "sphere", &MeshData::sphere(24, 32)),
+            sphere: GpuMesh::upload(device, "sphere", &MeshData::sphere(16, 24)),
             quad: GpuMesh::upload(device, "quad", &MeshData::quad()),
             tumbler: GpuMesh::upload(device, "tumbler", tumbler_mesh),
             instance_buffer: instance_buffer(device, instance_capacity),

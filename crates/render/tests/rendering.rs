@@ -1,0 +1,266 @@
+//! Rendering checked by pictures (R1-R3, R6): golden frames of the default
+//! scene, shadows where a tumbler hides the light, and MSAA on silhouettes.
+//!
+//! These draw off-screen on whatever adapter exists (lavapipe in CI). No
+//! adapter is a failure, never a skip.
+
+use glam::{Vec2, Vec3};
+use image::RgbaImage;
+use rolypoly_physics::{World, WorldConfig};
+use rolypoly_render::{Camera, RenderSettings, SceneView, Snapshot};
+use std::path::PathBuf;
+
+fn snapshot(config: &WorldConfig, settings: RenderSettings, w: u32, h: u32) -> Snapshot {
+    Snapshot::new(config, settings, w, h, None).unwrap_or_else(|e| panic!("cannot render: {e}"))
+}
+
+fn world_at(config: &WorldConfig, seed: u64, seconds: f64) -> World {
+    let mut world = World::new(config.clone(), seed).expect("scene builds");
+    for _ in 0..(seconds / config.solver.dt).round() as usize {
+        world.step();
+    }
+    world
+}
+
+fn luminance(img: &RgbaImage, x: u32, y: u32) -> f32 {
+    let p = img.get_pixel(x, y).0;
+    (0.2126 * p[0] as f32 + 0.7152 * p[1] as f32 + 0.0722 * p[2] as f32) / 255.0
+}
+
+// --- golden frames ---------------------------------------------------------
+
+/// A frame matches its golden when fewer than 0.5% of its pixels differ by
+/// more than 16/255 in any channel. (Software and hardware rasterisers round
+/// differently at edges; a real change of the picture moves far more.)
+const GOLDEN_SHARE: f64 = 0.005;
+const GOLDEN_CHANNEL: u8 = 16;
+
+fn golden_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/golden")
+}
+
+fn check_golden(name: &str, actual: &RgbaImage) {
+    let dir = golden_dir();
+    let path = dir.join(format!("{name}.png"));
+    if std::env::var_os("ROLYPOLY_BLESS").is_some() {
+        actual.save(&path).expect("write golden");
+        return;
+    }
+    let golden = image::open(&path)
+        .unwrap_or_else(|e| {
+            panic!(
+                "golden {} missing or unreadable ({e}); render it with ROLYPOLY_BLESS=1",
+                path.display()
+            )
+        })
+        .to_rgba8();
+    assert_eq!(
+        golden.dimensions(),
+        actual.dimensions(),
+        "{name}: size differs from the golden"
+    );
+    let mut diff = RgbaImage::new(actual.width(), actual.height());
+    let mut off = 0usize;
+    for (x, y, a) in actual.enumerate_pixels() {
+        let g = golden.get_pixel(x, y);
+        let d = (0..3).map(|c| a.0[c].abs_diff(g.0[c])).max().unwrap_or(0);
+        if d > GOLDEN_CHANNEL {
+            off += 1;
+        }
+        let v = d.saturating_mul(4);
+        diff.put_pixel(x, y, image::Rgba([v, v, v, 255]));
+    }
+    let share = off as f64 / (actual.width() * actual.height()) as f64;
+    if share >= GOLDEN_SHARE {
+        let actual_path = dir.join(format!("{name}-actual.png"));
+        let diff_path = dir.join(format!("{name}-diff.png"));
+        let _ = actual.save(&actual_path);
+        let _ = diff.save(&diff_path);
+        panic!(
+            "{name}: {:.2}% of pixels differ by more than {GOLDEN_CHANNEL}/255 (allowed {:.2}%); see {} and {}",
+            100.0 * share,
+            100.0 * GOLDEN_SHARE,
+            actual_path.display(),
+            diff_path.display()
+        );
+    }
+}
+
+#[test]
+fn default_scene_matches_its_golden_frames() {
+    let config = WorldConfig::default();
+    let mut snap = snapshot(&config, RenderSettings::default(), 480, 270);
+    let camera = Camera::overview(config.room.size.as_vec3());
+    for (name, seconds) in [("default-t0", 0.0), ("default-t2", 2.0)] {
+        let world = world_at(&config, 1, seconds);
+        let frame = snap
+            .capture(&SceneView::from_world(&world, None), &camera)
+            .expect("frame");
+        check_golden(name, &frame);
+    }
+}
+
+// --- shadows -----------------------------------------------------------------
+
+/// The pixel where a world point appears.
+fn pixel_of(camera: &Camera, p: Vec3, w: u32, h: u32) -> (u32, u32) {
+    let clip = camera.view_projection(w as f32 / h as f32) * p.extend(1.0);
+    let ndc = clip.truncate() / clip.w;
+    let x = ((ndc.x * 0.5 + 0.5) * w as f32) as u32;
+    let y = ((0.5 - ndc.y * 0.5) * h as f32) as u32;
+    (x.min(w - 1), y.min(h - 1))
+}
+
+#[test]
+fn a_tumbler_shadows_the_floor_and_lit_floor_is_unchanged() {
+    let mut config = WorldConfig::default();
+    config.balls.count = 0;
+    let (w, h) = (320, 180);
+    let world = world_at(&config, 1, 0.0);
+    let view = SceneView::from_world(&world, None);
+    let camera = Camera::overview(view.room_size);
+    // Where the light, through the middle of tumbler 3's body, meets the floor.
+    let t = &view.tumblers[3];
+    let body = t.position + Vec3::new(0.0, 0.25, 0.0);
+    let light = view.light.position;
+    let along = light.y / (light.y - body.y);
+    let shaded_point = light + (body - light) * along;
+    // A floor point the light sees directly: beside the tumbler, well clear.
+    let side = (shaded_point - t.position).cross(Vec3::Y).normalize() * 1.2;
+    let lit_point = shaded_point + side;
+    for tumbler in &view.tumblers {
+        assert!(
+            Vec2::new(
+                lit_point.x - tumbler.position.x,
+                lit_point.z - tumbler.position.z
+            )
+            .length()
+                > 0.8
+        );
+    }
+    let shaded = pixel_of(&camera, shaded_point, w, h);
+    let lit = pixel_of(&camera, lit_point, w, h);
+
+    let on = snapshot(&config, RenderSettings::default(), w, h)
+        .capture(&view, &camera)
+        .expect("frame");
+    let off_settings = RenderSettings {
+        shadows: false,
+        ..RenderSettings::default()
+    };
+    let off = snapshot(&config, off_settings, w, h)
+        .capture(&view, &camera)
+        .expect("frame");
+
+    let (s_on, s_off) = (
+        luminance(&on, shaded.0, shaded.1),
+        luminance(&off, shaded.0, shaded.1),
+    );
+    assert!(
+        s_on < 0.6 * s_off,
+        "shadowed floor: {s_on:.3} with shadows, {s_off:.3} without"
+    );
+    let (l_on, l_off) = (luminance(&on, lit.0, lit.1), luminance(&off, lit.0, lit.1));
+    assert!(
+        (l_on - l_off).abs() < 2.0 / 255.0,
+        "lit floor: {l_on:.3} with shadows, {l_off:.3} without"
+    );
+}
+
+// --- MSAA --------------------------------------------------------------------
+
+/// Share of strong horizontal edges whose middle pixel lies strictly between
+/// its neighbours (a blend of the two sides).
+fn blended_edge_share(img: &RgbaImage) -> (f64, usize) {
+    let (mut edges, mut blended) = (0usize, 0usize);
+    for y in 0..img.height() {
+        for x in 1..img.width() - 1 {
+            let (a, m, b) = (
+                luminance(img, x - 1, y),
+                luminance(img, x, y),
+                luminance(img, x + 1, y),
+            );
+            let jump = (b - a).abs();
+            if jump < 0.25 {
+                continue;
+            }
+            edges += 1;
+            let (lo, hi) = (a.min(b), a.max(b));
+            if m > lo + 0.15 * jump && m < hi - 0.15 * jump {
+                blended += 1;
+            }
+        }
+    }
+    (blended as f64 / edges.max(1) as f64, edges)
+}
+
+#[test]
+fn msaa_blends_silhouette_edges() {
+    let mut config = WorldConfig::default();
+    config.balls.count = 0;
+    let world = world_at(&config, 1, 0.0);
+    let view = SceneView::from_world(&world, None);
+    // Close to a tumbler, its outline against the wall behind.
+    let camera = Camera {
+        eye: Vec3::new(-2.2, 0.6, 0.2),
+        target: Vec3::new(-2.2, 0.45, -1.2),
+        fov_y_deg: 50.0,
+    };
+    let (w, h) = (240, 160);
+    let four = snapshot(&config, RenderSettings::default(), w, h)
+        .capture(&view, &camera)
+        .expect("frame");
+    let one_settings = RenderSettings {
+        msaa: 1,
+        ..RenderSettings::default()
+    };
+    let one = snapshot(&config, one_settings, w, h)
+        .capture(&view, &camera)
+        .expect("frame");
+    let (share4, edges4) = blended_edge_share(&four);
+    let (share1, edges1) = blended_edge_share(&one);
+    assert!(
+        edges4 > 20 && edges1 > 20,
+        "no silhouette in view ({edges4}, {edges1} edges)"
+    );
+    // (Some strong edges are texture and shading, which blend either way.)
+    assert!(
+        share4 > 0.25,
+        "with 4x only {:.0}% of edge pixels are blends",
+        100.0 * share4
+    );
+    assert!(
+        share4 > 2.0 * share1,
+        "4x {:.0}% vs 1x {:.0}% blended edge pixels",
+        100.0 * share4,
+        100.0 * share1
+    );
+}
+
+#[test]
+fn draw_calls_do_not_depend_on_the_ball_count() {
+    let mut calls = Vec::new();
+    for balls in [0, 30, 2000] {
+        let mut config = WorldConfig::default();
+        config.balls.count = balls;
+        let world = world_at(&config, 1, 0.0);
+        let mut snap = snapshot(&config, RenderSettings::default(), 64, 36);
+        let view = SceneView::from_world(&world, None);
+        let stats = snap
+            .draw(&view, &Camera::overview(view.room_size))
+            .expect("frame");
+        calls.push(stats.draw_calls);
+    }
+    // With no balls there is nothing to instance; with any, one draw per pass.
+    assert_eq!(calls[1], calls[2], "draw calls {calls:?}");
+    assert!(calls[0] < calls[1]);
+}
+
+#[test]
+fn a_zero_sized_frame_is_an_error_not_a_panic() {
+    let config = WorldConfig::default();
+    let err = Snapshot::new(&config, RenderSettings::default(), 0, 10, None)
+        .err()
+        .expect("must fail");
+    assert!(err.to_string().contains("0x10"), "{err}");
+}
