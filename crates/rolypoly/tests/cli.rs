@@ -237,3 +237,80 @@ fn usage_errors_exit_non_zero() {
     let output = rolypoly(&["--no-such-flag"]);
     assert!(!output.status.success());
 }
+
+/// A scratch path for a file a test writes.
+fn scratch(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-out");
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir.join(name)
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let out = scratch("frame.png");
+    let _ = std::fs::remove_file(&out);
+    let out_str = out.to_str().expect("UTF-8 path");
+    let output = rolypoly(&[
+        "render", "--time", "0.5", "--size", "96x54", "--out", out_str,
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let img = image::open(&out).expect("a PNG was written").to_rgba8();
+    assert_eq!(img.dimensions(), (96, 54));
+    // Not a blank frame: the room has light and dark parts.
+    let lum: Vec<u32> = img
+        .pixels()
+        .map(|p| p.0[0] as u32 + p.0[1] as u32 + p.0[2] as u32)
+        .collect();
+    let (lo, hi) = (
+        lum.iter().min().copied().unwrap_or(0),
+        lum.iter().max().copied().unwrap_or(0),
+    );
+    assert!(hi > lo + 200, "frame is flat: {lo}..{hi}");
+}
+
+#[test]
+fn render_rejects_bad_sizes_and_meshes_cleanly() {
+    let out = scratch("never.png");
+    let out_str = out.to_str().expect("UTF-8 path");
+    let err = assert_clean_failure(&rolypoly(&["render", "--size", "0x10", "--out", out_str]));
+    assert!(err.contains("1 ..= 8192"), "{err}");
+
+    let err = assert_clean_failure(&rolypoly(&[
+        "render",
+        "--tumbler-obj",
+        "/no/such/mesh.obj",
+        "--out",
+        out_str,
+    ]));
+    assert!(err.contains("/no/such/mesh.obj"), "{err}");
+
+    let broken = scratch("broken.obj");
+    std::fs::write(&broken, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").expect("write");
+    let broken_str = broken.to_str().expect("UTF-8 path");
+    let err = assert_clean_failure(&rolypoly(&[
+        "render",
+        "--tumbler-obj",
+        broken_str,
+        "--out",
+        out_str,
+    ]));
+    assert!(
+        err.contains("broken.obj") && err.contains("normals"),
+        "{err}"
+    );
+    assert!(!out.exists(), "no frame is written on failure");
+}
+
+#[test]
+fn make_tumbler_obj_writes_the_shipped_mesh_for_the_default_scene() {
+    let out = scratch("tumbler.obj");
+    let out_str = out.to_str().expect("UTF-8 path");
+    let output = rolypoly(&["make-tumbler-obj", "--out", out_str]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let written = std::fs::read_to_string(&out).expect("written");
+    let shipped = include_str!("../../../assets/tumbler.obj");
+    assert!(
+        written == shipped,
+        "the command and assets/tumbler.obj disagree"
+    );
+}
