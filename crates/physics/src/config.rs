@@ -89,6 +89,10 @@ pub struct FireballConfig {
     /// Where `F` launches it from when the caller does not pass a position.
     pub spawn: DVec3,
     pub direction: DVec3,
+    /// What a hit does to a ball: `true`, the ball is caught (it leaves the
+    /// simulation at once; the effects draw it collapsing) and comes back
+    /// when the balls are re-initialised; `false`, it is knocked away.
+    pub consumes_balls: bool,
 }
 
 /// The hand that drags a grabbed tumbler: a spring-damper at the grab point.
@@ -219,6 +223,7 @@ impl Default for WorldConfig {
                 speed: 6.0,
                 spawn: DVec3::new(0.0, 1.5, 3.5),
                 direction: DVec3::new(0.3, -0.1, -1.0),
+                consumes_balls: true,
             },
             grab: GrabConfig {
                 stiffness: 250.0,

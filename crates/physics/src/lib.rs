@@ -31,6 +31,7 @@ pub use balls::{Balls, Tint};
 pub use config::*;
 pub use events::{Event, EventKind};
 pub use fireball::Fireball;
+pub use rng::Rng;
 pub use room::{Room, Surface};
 pub use tumbler::{Grip, Tumbler, TumblerShape};
 pub use world::{BuildError, Energy, Pick, World};

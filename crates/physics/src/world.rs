@@ -195,6 +195,13 @@ impl World {
         self.events.drain(..)
     }
 
+    /// Moves the events since the last call into `into` (emptied first),
+    /// keeping both buffers' storage: no allocation once warm.
+    pub fn take_events(&mut self, into: &mut Vec<Event>) {
+        into.clear();
+        std::mem::swap(&mut self.events, into);
+    }
+
     /// Re-initialises the balls (I6): new random positions and velocities
     /// from the world's random sequence, every ball alive and white again.
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
@@ -933,8 +940,19 @@ impl World {
                     continue;
                 }
                 let n = d / dist;
-                f.position += n * overlap;
                 let vn = (f.velocity - self.balls.velocity[i]).dot(n);
+                if self.config.fireball.consumes_balls {
+                    // Caught: the ball leaves the world; the fireball flies on.
+                    self.balls.alive[i] = false;
+                    self.events.push(Event {
+                        kind: EventKind::FireballBall { ball: i },
+                        point: self.balls.position[i] + n * self.balls.radius[i],
+                        normal: n,
+                        speed: (-vn).max(0.0),
+                    });
+                    continue;
+                }
+                f.position += n * overlap;
                 if vn < 0.0 {
                     // An elastic impulse between equal partners, then the
                     // fireball resumes its constant speed.

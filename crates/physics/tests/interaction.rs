@@ -166,6 +166,7 @@ fn fireball_keeps_its_speed_ignores_gravity_and_reports_hits() {
 fn fireball_knocks_a_ball_away_with_momentum_to_match() {
     let mut cfg = empty_room();
     cfg.gravity = 0.0;
+    cfg.fireball.consumes_balls = false;
     let mut w = build(
         WorldConfig {
             balls: rolypoly_physics::BallsConfig {
@@ -212,4 +213,34 @@ fn reset_brings_back_fresh_white_balls() {
             .iter()
             .all(|v| v.length() >= w.config().balls.speed_min)
     );
+}
+
+#[test]
+fn a_consuming_fireball_catches_the_ball_and_flies_on() {
+    let mut cfg = empty_room();
+    cfg.gravity = 0.0;
+    cfg.balls.count = 1;
+    assert!(cfg.fireball.consumes_balls, "catching is the default");
+    let mut w = build(cfg, 1);
+    w.balls_mut().set(0, DVec3::new(0.0, 2.0, 0.0), DVec3::ZERO);
+    w.launch_fireball(Some((DVec3::new(-1.0, 2.0, 0.0), DVec3::X)));
+    let mut events = Vec::new();
+    let mut hit = None;
+    for _ in 0..60 {
+        w.step();
+        w.take_events(&mut events);
+        hit = hit.or(events
+            .iter()
+            .find(|e| matches!(e.kind, EventKind::FireballBall { ball: 0 }))
+            .copied());
+    }
+    let hit = hit.expect("the fireball reached the ball");
+    assert!(!w.balls().alive()[0], "the ball is caught");
+    // The event says where the ball was: its surface point and the normal towards the fireball.
+    assert!(
+        (hit.point - hit.normal * w.balls().radii()[0] - DVec3::new(0.0, 2.0, 0.0)).length() < 1e-9
+    );
+    assert_eq!(w.fireball().unwrap().velocity.normalize(), DVec3::X);
+    w.reset_balls().expect("balls fit");
+    assert!(w.balls().alive()[0], "re-initialising brings it back");
 }

@@ -1,0 +1,81 @@
+//! Every constant of the particle effects (a scene file's `[effects]`).
+
+/// The fireball's trail (X2): cubes dropped at random intervals along its path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrailConfig {
+    /// A new cube comes after a random wait in this range (seconds).
+    pub interval_min: f64,
+    pub interval_max: f64,
+    /// How long a cube lives (seconds).
+    pub life: f64,
+    /// Cube size at birth, as a share of the fireball's radius.
+    pub size: f64,
+}
+
+/// The fireball hitting a wall (X3): a ring of cubes spreading in the wall.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WallHitConfig {
+    /// How long the event keeps spawning (seconds).
+    pub duration: f64,
+    /// Cubes spawned per second while it lasts.
+    pub rate: f64,
+    /// Radius the ring reaches at the end of the event (metres).
+    pub radius: f64,
+    pub life: f64,
+    /// Cube size (metres) at its largest.
+    pub size: f64,
+}
+
+/// The fireball hitting a ball (X4): cubes collapse onto the ball, then a burst.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BallHitConfig {
+    pub duration: f64,
+    pub rate: f64,
+    /// Radius of the shell the cubes start on at the beginning of the event
+    /// (metres); it shrinks to nothing by the end.
+    pub radius: f64,
+    pub life: f64,
+    pub size: f64,
+    /// The energy burst at the end: its life and largest size.
+    pub burst_life: f64,
+    pub burst_size: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct EffectsConfig {
+    /// Particles alive at once, at most (X5); spawning beyond fails and is counted.
+    pub capacity: usize,
+    pub trail: TrailConfig,
+    pub wall_hit: WallHitConfig,
+    pub ball_hit: BallHitConfig,
+}
+
+impl Default for EffectsConfig {
+    fn default() -> Self {
+        EffectsConfig {
+            capacity: 4096,
+            trail: TrailConfig {
+                interval_min: 0.005,
+                interval_max: 0.03,
+                life: 0.6,
+                size: 0.45,
+            },
+            wall_hit: WallHitConfig {
+                duration: 0.5,
+                rate: 240.0,
+                radius: 0.6,
+                life: 0.45,
+                size: 0.07,
+            },
+            ball_hit: BallHitConfig {
+                duration: 0.7,
+                rate: 200.0,
+                radius: 0.5,
+                life: 0.35,
+                size: 0.05,
+                burst_life: 0.4,
+                burst_size: 0.5,
+            },
+        }
+    }
+}

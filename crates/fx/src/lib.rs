@@ -1,0 +1,18 @@
+//! Particle effects of the rolypoly fireball, in the report's style of a
+//! "cyber-punk space collapse": a fading trail of cubes, a ring spreading in
+//! a wall it hits, and the collapse and burst of a ball it hits (X1-X5).
+//!
+//! It reads the physics' events and the fireball's state, and knows nothing
+//! of wgpu: the renderer draws what [`Effects`] and [`FireballLook`] say.
+
+mod config;
+mod effects;
+mod look;
+mod particle;
+mod ring;
+
+pub use config::{BallHitConfig, EffectsConfig, TrailConfig, WallHitConfig};
+pub use effects::{BallHit, Effects, EffectsStats, WallHit};
+pub use look::{Core, FireballLook, Shell};
+pub use particle::{Particle, ParticleKind, WALL_HIT_PEAK};
+pub use ring::{Full, ParticleRing};

@@ -1,0 +1,101 @@
+//! The fireball's own look (X1): eight crystal cores turning inside, and
+//! two outer energy shells that breathe (pulse in size and alpha).
+
+use glam::{Quat, Vec3};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Core {
+    pub position: Vec3,
+    pub size: f32,
+    pub rotation: Quat,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shell {
+    pub radius: f32,
+    pub alpha: f32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FireballLook {
+    pub centre: Vec3,
+    pub cores: [Core; 8],
+    pub shells: [Shell; 2],
+}
+
+impl FireballLook {
+    /// The look of a fireball of `radius` at `centre`, `time` seconds into
+    /// the effects.
+    pub fn at(centre: Vec3, radius: f32, time: f64) -> FireballLook {
+        let t = time as f32;
+        let turn = Quat::from_euler(glam::EulerRot::YXZ, 2.1 * t, 1.3 * t, 0.7 * t);
+        let mut cores = [Core {
+            position: centre,
+            size: 0.0,
+            rotation: Quat::IDENTITY,
+        }; 8];
+        for (i, core) in cores.iter_mut().enumerate() {
+            // The corners of a cube, turning.
+            let corner = Vec3::new(
+                if i & 1 == 0 { -1.0 } else { 1.0 },
+                if i & 2 == 0 { -1.0 } else { 1.0 },
+                if i & 4 == 0 { -1.0 } else { 1.0 },
+            ) / 3f32.sqrt();
+            let pulse = 1.0 + 0.15 * (5.0 * t + i as f32).sin();
+            core.position = centre + turn * corner * (0.38 * radius * pulse);
+            core.size = 0.22 * radius;
+            core.rotation = Quat::from_axis_angle(corner, 3.0 * t + i as f32);
+        }
+        let breathe = |rate: f32, phase: f32| (std::f32::consts::TAU * rate * t + phase).sin();
+        let shells = [
+            Shell {
+                radius: radius * (1.0 + 0.08 * breathe(1.6, 0.0)),
+                alpha: 0.45 + 0.15 * breathe(1.6, 0.0),
+            },
+            Shell {
+                radius: radius * (1.35 + 0.12 * breathe(0.9, 1.3)),
+                alpha: 0.22 + 0.1 * breathe(0.9, 1.3),
+            },
+        ];
+        FireballLook {
+            centre,
+            cores,
+            shells,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cores_stay_inside_and_shells_breathe() {
+        let (radius, centre) = (0.15, Vec3::new(1.0, 2.0, 3.0));
+        let mut sizes = Vec::new();
+        for i in 0..200 {
+            let look = FireballLook::at(centre, radius, i as f64 * 0.01);
+            for c in look.cores {
+                assert!(c.position.distance(centre) + 0.5 * c.size * 3f32.sqrt() < radius * 1.05);
+            }
+            sizes.push((
+                look.shells[0].radius,
+                look.shells[0].alpha,
+                look.shells[1].radius,
+            ));
+        }
+        let span = |f: fn(&(f32, f32, f32)) -> f32| {
+            let v: Vec<f32> = sizes.iter().map(f).collect();
+            v.iter().cloned().fold(f32::MIN, f32::max) - v.iter().cloned().fold(f32::MAX, f32::min)
+        };
+        assert!(
+            span(|s| s.0) > 0.1 * radius,
+            "the inner shell does not breathe"
+        );
+        assert!(span(|s| s.1) > 0.2, "its alpha does not pulse");
+        assert!(
+            span(|s| s.2) > 0.1 * radius,
+            "the outer shell does not breathe"
+        );
+    }
+}
