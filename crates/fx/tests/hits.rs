@@ -6,8 +6,10 @@ use rolypoly_fx::{Effects, EffectsConfig, ParticleKind};
 use rolypoly_physics::{Event, EventKind, World, WorldConfig};
 
 fn weightless_room(balls: usize) -> World {
-    let mut cfg = WorldConfig::default();
-    cfg.gravity = 0.0;
+    let mut cfg = WorldConfig {
+        gravity: 0.0,
+        ..WorldConfig::default()
+    };
     cfg.balls.count = balls;
     cfg.tumblers.placements.clear();
     World::new(cfg, 1).expect("scene builds")
@@ -17,10 +19,7 @@ fn weightless_room(balls: usize) -> World {
 fn run_until(world: &mut World, fx: &mut Effects, want: fn(&EventKind) -> bool) -> Event {
     let mut events = Vec::new();
     for _ in 0..600 {
-        world.step();
-        world.take_events(&mut events);
-        fx.consume(&events, world);
-        fx.update(world.config().solver.dt, world.fireball());
+        fx.step_with(world, &mut events);
         if let Some(e) = events.iter().find(|e| want(&e.kind)) {
             return *e;
         }
@@ -186,10 +185,7 @@ fn the_same_seed_gives_the_same_particles() {
         )));
         let mut events = Vec::new();
         for _ in 0..200 {
-            world.step();
-            world.take_events(&mut events);
-            fx.consume(&events, &world);
-            fx.update(world.config().solver.dt, world.fireball());
+            fx.step_with(&mut world, &mut events);
         }
         fx.particles()
             .map(|p| (p.position().to_array(), p.size()))

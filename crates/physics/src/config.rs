@@ -93,6 +93,8 @@ pub struct FireballConfig {
     /// simulation at once; the effects draw it collapsing) and comes back
     /// when the balls are re-initialised; `false`, it is knocked away.
     pub consumes_balls: bool,
+    /// Launched from `spawn` when the world is built, rather than by the user.
+    pub starts_active: bool,
 }
 
 /// The hand that drags a grabbed tumbler: a spring-damper at the grab point.
@@ -219,11 +221,12 @@ impl Default for WorldConfig {
                 ],
             },
             fireball: FireballConfig {
-                radius: 0.15,
+                radius: 0.2,
                 speed: 6.0,
                 spawn: DVec3::new(0.0, 1.5, 3.5),
                 direction: DVec3::new(0.3, -0.1, -1.0),
                 consumes_balls: true,
+                starts_active: false,
             },
             grab: GrabConfig {
                 stiffness: 250.0,

@@ -134,6 +134,9 @@ impl World {
             config,
         };
         world.spawn_balls()?;
+        if world.config.fireball.starts_active {
+            world.launch_fireball(None);
+        }
         Ok(world)
     }
 

@@ -197,6 +197,31 @@ fn fs_emissive(in: VertexOut) -> @location(0) vec4<f32> {
     return vec4<f32>(in.color.rgb * in.material.w, 1.0);
 }
 
+// Glowing and see-through, unlit, in premultiplied alpha: rgb is the light
+// added, a how much of what is behind is covered.
+// Kind 0, a cube: a hole in space (a dark, half-covering inside) framed by a
+// bright edge and a circuit-like grid, as in the report's "space collapse".
+// Kind 1, a shell: pure glow, brightest at its rim.
+@fragment
+fn fs_glow(in: VertexOut) -> @location(0) vec4<f32> {
+    let alpha = in.color.a;
+    if in.material.x < 0.5 {
+        let q = abs(in.uv - vec2<f32>(0.5));
+        let edge = max(q.x, q.y);
+        let frame = smoothstep(0.34, 0.47, edge);
+        let cells = abs(fract(in.uv * 3.0) - vec2<f32>(0.5));
+        let grid = smoothstep(0.43, 0.5, max(cells.x, cells.y)) * (1.0 - frame);
+        let glow = in.color.rgb * (frame + 0.35 * grid);
+        let cover = 0.8 * (1.0 - frame);
+        let void_color = vec3<f32>(0.015, 0.0, 0.04);
+        return vec4<f32>((glow + void_color * cover) * alpha, cover * alpha);
+    }
+    let v = normalize(globals.camera_pos.xyz - in.world);
+    let facing = abs(dot(normalize(in.normal), v));
+    let strength = 0.3 + 1.3 * pow(1.0 - facing, 2.0);
+    return vec4<f32>(in.color.rgb * strength * alpha, 0.0);
+}
+
 struct ShadowFace {
     view_proj: mat4x4<f32>,
 };

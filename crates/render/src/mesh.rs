@@ -57,6 +57,42 @@ impl MeshData {
         mesh
     }
 
+    /// A cube of edge 1 centred on the origin, each face with its own
+    /// normal and full 0..1 UVs.
+    pub fn cube() -> MeshData {
+        let mut mesh = MeshData::default();
+        for axis in 0..3 {
+            for sign in [1.0f32, -1.0] {
+                let mut n = [0.0; 3];
+                n[axis] = sign;
+                let normal = glam::Vec3::from_array(n);
+                // Two edge directions whose cross product is the normal.
+                let u = glam::Vec3::from_array(
+                    [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]][axis],
+                ) * sign;
+                let v = normal.cross(u);
+                let base = mesh.vertices.len() as u32;
+                for (a, b) in [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)] {
+                    let p = normal * 0.5 + u * a + v * b;
+                    mesh.vertices.push(Vertex {
+                        position: p.to_array(),
+                        normal: n,
+                        uv: [a + 0.5, b + 0.5],
+                    });
+                }
+                mesh.indices.extend_from_slice(&[
+                    base,
+                    base + 1,
+                    base + 2,
+                    base,
+                    base + 2,
+                    base + 3,
+                ]);
+            }
+        }
+        mesh
+    }
+
     /// The unit square in the xy plane (0..1), facing +z.
     pub fn quad() -> MeshData {
         let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
@@ -116,6 +152,23 @@ impl GpuMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn cube_faces_point_outwards() {
+        let m = MeshData::cube();
+        assert_eq!(m.vertices.len(), 24);
+        for t in m.indices.chunks(3) {
+            let [a, b, c] =
+                [t[0], t[1], t[2]].map(|i| glam::Vec3::from_array(m.vertices[i as usize].position));
+            let n = (b - a).cross(c - a);
+            assert!(n.dot(a + b + c) > 0.0, "a cube face winds inwards");
+            assert!(
+                n.normalize()
+                    .dot(glam::Vec3::from_array(m.vertices[t[0] as usize].normal))
+                    > 0.99
+            );
+        }
+    }
 
     #[test]
     fn sphere_vertices_lie_on_the_unit_sphere_and_triangles_face_out() {

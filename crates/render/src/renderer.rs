@@ -92,6 +92,15 @@ impl Instance {
             material: [kind as u32 as f32, specular, shininess, emission],
         }
     }
+
+    /// Something that glows: `shape` 0 is a cube, 1 a shell.
+    fn glow(model: Mat4, color: Vec3, alpha: f32, shape: f32) -> Instance {
+        Instance {
+            model: model.to_cols_array_2d(),
+            color: color.extend(alpha).to_array(),
+            material: [shape, 0.0, 0.0, 0.0],
+        }
+    }
 }
 
 #[repr(C)]
@@ -123,6 +132,10 @@ struct Ranges {
     balls: std::ops::Range<u32>,
     tumblers: std::ops::Range<u32>,
     bulb: std::ops::Range<u32>,
+    /// Particles and the fireball's cores: glowing cubes.
+    cubes: std::ops::Range<u32>,
+    /// The fireball's shells.
+    shells: std::ops::Range<u32>,
 }
 
 pub struct Renderer {
@@ -130,6 +143,7 @@ pub struct Renderer {
     output_format: wgpu::TextureFormat,
     scene_pipeline: wgpu::RenderPipeline,
     emissive_pipeline: wgpu::RenderPipeline,
+    glow_pipeline: wgpu::RenderPipeline,
     shadow_pipeline: wgpu::RenderPipeline,
     tonemap_pipeline: wgpu::RenderPipeline,
     tonemap_layout: wgpu::BindGroupLayout,
@@ -139,6 +153,7 @@ pub struct Renderer {
     shadow_cube: ShadowCube,
     sphere: GpuMesh,
     quad: GpuMesh,
+    cube: GpuMesh,
     tumbler: GpuMesh,
     instance_buffer: wgpu::Buffer,
     instance_capacity: usize,
@@ -327,6 +342,56 @@ impl Renderer {
         };
         let scene_pipeline = scene_pipeline_for("fs_lit", "lit");
         let emissive_pipeline = scene_pipeline_for("fs_emissive", "emissive");
+        // Premultiplied alpha: a fragment adds its light and covers a share
+        // of what is behind; with no cover it is purely additive (the shells,
+        // the cubes' glowing frames), so only the cubes' dark insides depend
+        // on drawing order, and small cubes need no sorting. Depth is tested
+        // (walls hide particles) but not written (particles never hide each
+        // other).
+        let glow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("glow"),
+            layout: Some(&scene_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_scene"),
+                compilation_options: Default::default(),
+                buffers: &buffers,
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: Some(wgpu::Face::Back),
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: settings.msaa,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_glow"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: HDR_FORMAT,
+                    blend: Some(wgpu::BlendState {
+                        color: wgpu::BlendComponent {
+                            src_factor: wgpu::BlendFactor::One,
+                            dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                            operation: wgpu::BlendOperation::Add,
+                        },
+                        alpha: wgpu::BlendComponent::OVER,
+                    }),
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
 
         let shadow_pipeline_layout =
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -396,6 +461,7 @@ impl Renderer {
             output_format,
             scene_pipeline,
             emissive_pipeline,
+            glow_pipeline,
             shadow_pipeline,
             tonemap_pipeline,
             tonemap_layout,
@@ -405,6 +471,7 @@ impl Renderer {
             shadow_cube,
             sphere: GpuMesh::upload(device, "sphere", &MeshData::sphere(16, 24)),
             quad: GpuMesh::upload(device, "quad", &MeshData::quad()),
+            cube: GpuMesh::upload(device, "cube", &MeshData::cube()),
             tumbler: GpuMesh::upload(device, "tumbler", tumbler_mesh),
             instance_buffer: instance_buffer(device, instance_capacity),
             instance_capacity,
@@ -546,6 +613,10 @@ impl Renderer {
             // ... then what glows and is not lit.
             pass.set_pipeline(&self.emissive_pipeline);
             draw_calls += draw(&mut pass, &self.sphere, ranges.bulb.clone());
+            // ... and last what is see-through.
+            pass.set_pipeline(&self.glow_pipeline);
+            draw_calls += draw(&mut pass, &self.cube, ranges.cubes.clone());
+            draw_calls += draw(&mut pass, &self.sphere, ranges.shells.clone());
         }
         {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -662,6 +733,48 @@ impl Renderer {
         self.instances
             .push(Instance::new(model, glow, Kind::Plain, 0.0, 1.0, 12.0));
         ranges.bulb = start..self.instances.len() as u32;
+
+        let start = self.instances.len() as u32;
+        for p in &view.particles {
+            let model =
+                Mat4::from_scale_rotation_translation(Vec3::splat(p.size), p.rotation, p.position);
+            self.instances
+                .push(Instance::glow(model, p.color, p.alpha, 0.0));
+        }
+        if let Some(look) = &view.fireball {
+            for core in &look.cores {
+                let model = Mat4::from_scale_rotation_translation(
+                    Vec3::splat(core.size),
+                    core.rotation,
+                    core.position,
+                );
+                self.instances.push(Instance::glow(
+                    model,
+                    Vec3::new(1.0, 0.7, 0.3) * 2.5,
+                    1.0,
+                    0.0,
+                ));
+            }
+        }
+        ranges.cubes = start..self.instances.len() as u32;
+
+        let start = self.instances.len() as u32;
+        if let Some(look) = &view.fireball {
+            let colors = [
+                Vec3::new(1.0, 0.4, 0.05) * 1.4,
+                Vec3::new(1.0, 0.15, 0.3) * 1.0,
+            ];
+            for (shell, color) in look.shells.iter().zip(colors) {
+                let model = Mat4::from_scale_rotation_translation(
+                    Vec3::splat(shell.radius),
+                    glam::Quat::IDENTITY,
+                    look.centre,
+                );
+                self.instances
+                    .push(Instance::glow(model, color, shell.alpha, 1.0));
+            }
+        }
+        ranges.shells = start..self.instances.len() as u32;
         ranges
     }
 

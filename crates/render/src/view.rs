@@ -3,6 +3,7 @@
 //! The renderer never reaches into the physics; it is handed a `SceneView`.
 
 use glam::{Mat4, Quat, Vec3};
+use rolypoly_fx::{Effects, FireballLook, ParticleKind};
 use rolypoly_physics::World;
 
 /// The point light at the centre of the ceiling (S2).
@@ -56,6 +57,28 @@ impl TumblerView {
     }
 }
 
+/// A glowing cube of the particle effects.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParticleView {
+    pub position: Vec3,
+    /// Edge length in metres.
+    pub size: f32,
+    pub rotation: Quat,
+    /// Linear HDR colour (brighter than 1 glows).
+    pub color: Vec3,
+    pub alpha: f32,
+}
+
+/// The glow colour of each kind of particle.
+pub fn particle_color(kind: ParticleKind) -> Vec3 {
+    match kind {
+        ParticleKind::Trail => Vec3::new(1.0, 0.3, 0.04) * 1.3,
+        ParticleKind::WallHit => Vec3::new(0.05, 0.7, 1.0) * 1.3,
+        ParticleKind::Collapse => Vec3::new(0.65, 0.15, 1.0) * 1.3,
+        ParticleKind::Burst => Vec3::new(1.0, 0.5, 1.0) * 2.0,
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneView {
     pub room_size: Vec3,
@@ -64,6 +87,8 @@ pub struct SceneView {
     pub light: Light,
     pub balls: Vec<BallView>,
     pub tumblers: Vec<TumblerView>,
+    pub particles: Vec<ParticleView>,
+    pub fireball: Option<FireballLook>,
 }
 
 impl SceneView {
@@ -100,6 +125,40 @@ impl SceneView {
             light: Light::ceiling_centre(room_size),
             balls,
             tumblers,
+            particles: Vec::new(),
+            fireball: world
+                .fireball()
+                .map(|f| FireballLook::at(f.position.as_vec3(), f.radius as f32, world.time())),
         }
+    }
+
+    /// Adds what the effects show: the particles, the balls caught in a
+    /// collapse, and the fireball's look at the effects' own time.
+    pub fn with_effects(mut self, effects: &Effects, world: &World) -> SceneView {
+        self.particles
+            .extend(effects.particles().map(|p| ParticleView {
+                position: p.position(),
+                size: p.size(),
+                rotation: Quat::from_scaled_axis(p.spin),
+                color: particle_color(p.kind),
+                alpha: p.alpha(),
+            }));
+        self.balls.extend(
+            effects
+                .captured_balls()
+                .map(|(position, radius, color)| BallView {
+                    position,
+                    radius,
+                    color,
+                }),
+        );
+        if let Some(f) = world.fireball() {
+            self.fireball = Some(FireballLook::at(
+                f.position.as_vec3(),
+                f.radius as f32,
+                effects.time(),
+            ));
+        }
+        self
     }
 }

@@ -22,7 +22,8 @@ use scene::BUILTIN_ORIGIN;
 pub fn run(cli: &Cli) -> anyhow::Result<()> {
     let scene_args = &cli.scene;
     let path = scene_args.scene.as_deref();
-    let config = scene::load_scene_with(path, &scene_args.overrides())?;
+    let scene = scene::load_scene_with(path, &scene_args.overrides())?;
+    let config = scene.world;
     let scene_name = match path {
         Some(path) => format!("scene `{}`", path.display()),
         None => format!("the {BUILTIN_ORIGIN}"),
@@ -45,7 +46,9 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Simulate(args)) => {
             simulate_command(&mut world, &scene_name, args, scene_args.seed, dt)
         }
-        Some(Command::Render(args)) => render::render(&mut world, args),
+        Some(Command::Render(args)) => {
+            render::render(&mut world, scene.effects, scene_args.seed, args)
+        }
         Some(Command::MakeTumblerObj(args)) => render::make_tumbler_obj(world.config(), args),
     }
 }

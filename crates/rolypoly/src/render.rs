@@ -5,21 +5,26 @@ use std::path::Path;
 
 use anyhow::Context;
 use glam::Vec3;
+use rolypoly_fx::{Effects, EffectsConfig};
 use rolypoly_physics::{World, WorldConfig};
 use rolypoly_render::{Camera, MeshData, RenderSettings, SceneView, Snapshot};
 
 use crate::cli::{MakeTumblerObjArgs, RenderArgs, steps_for};
 
-/// Simulates `world` to the requested time and writes that frame.
-pub fn render(world: &mut World, args: &RenderArgs) -> anyhow::Result<()> {
+/// Simulates `world` and its effects to the requested time and writes that
+/// frame.
+pub fn render(
+    world: &mut World,
+    effects: EffectsConfig,
+    seed: u64,
+    args: &RenderArgs,
+) -> anyhow::Result<()> {
     let config = world.config().clone();
     if args.fireball {
         world.launch_fireball(None);
     }
-    for _ in 0..steps_for(args.time, config.solver.dt) {
-        world.step();
-        world.drain_events().for_each(drop);
-    }
+    let mut fx = Effects::new(effects, seed);
+    advance(world, &mut fx, steps_for(args.time, config.solver.dt));
     let mesh = args.tumbler_obj.as_deref().map(read_obj).transpose()?;
     let settings = RenderSettings {
         msaa: args.msaa,
@@ -37,7 +42,8 @@ pub fn render(world: &mut World, args: &RenderArgs) -> anyhow::Result<()> {
         },
         None => Camera::overview(config.room.size.as_vec3()),
     };
-    let image = snapshot.capture(&SceneView::from_world(world, None), &camera)?;
+    let view = SceneView::from_world(world, None).with_effects(&fx, world);
+    let image = snapshot.capture(&view, &camera)?;
     image
         .save_with_format(&args.out, image::ImageFormat::Png)
         .with_context(|| format!("cannot write `{}`", args.out.display()))?;
@@ -50,6 +56,15 @@ pub fn render(world: &mut World, args: &RenderArgs) -> anyhow::Result<()> {
         snapshot.gpu.describe()
     );
     Ok(())
+}
+
+/// Steps the world and its effects together, as the window does at a fixed
+/// time step.
+pub fn advance(world: &mut World, fx: &mut Effects, steps: u64) {
+    let mut events = Vec::new();
+    for _ in 0..steps {
+        fx.step_with(world, &mut events);
+    }
 }
 
 /// Reads a tumbler mesh from an OBJ file.

@@ -1,8 +1,10 @@
 //! Scene files (SPEC S6, A4): the built-in default scene overridden by a
 //! user's TOML file, then range-checked.
 //!
-//! A file may set any subset of keys; everything it leaves out keeps the
-//! value of [`WorldConfig::default`]. The file is parsed into a partial schema
+//! A scene is the physics ([`WorldConfig`]) plus the particle effects
+//! ([`EffectsConfig`], the file's `[effects]`). A file may set any subset of
+//! keys; everything it leaves out keeps the value of [`WorldConfig::default`]
+//! or [`EffectsConfig::default`]. The file is parsed into a partial schema
 //! whose tables all reject unknown keys, so a typo is an error instead of a
 //! silently ignored setting. Every value read from the file keeps its source
 //! span, so a range error can point at the line where the value was written.
@@ -13,6 +15,7 @@ use std::ops::Range;
 use std::path::Path;
 
 use glam::DVec3;
+use rolypoly_fx::EffectsConfig;
 use rolypoly_physics::{Rgb, SphereSpec, TumblerPlacement, WorldConfig};
 use serde::Deserialize;
 use toml::Spanned;
@@ -25,6 +28,9 @@ pub const MAX_BALLS: usize = 1_000_000;
 
 /// The number of spheres in a tumbler's compound shape (SPEC P6).
 pub const TUMBLER_SPHERES: usize = 6;
+
+/// Smallest and largest particle capacity a scene may ask for.
+pub const PARTICLE_CAPACITY: (usize, usize) = (16, 1_000_000);
 
 /// Names of the room's surfaces, in the order of `RoomConfig::colors`.
 const SURFACE_NAMES: [&str; 6] = ["floor", "ceiling", "left", "right", "back", "front"];
@@ -76,6 +82,13 @@ pub enum SceneError {
     },
 }
 
+/// A loaded scene: the physics and the particle effects.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scene {
+    pub world: WorldConfig,
+    pub effects: EffectsConfig,
+}
+
 /// Settings given on the command line; they win over the scene file and are
 /// range-checked with the same rules.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -88,15 +101,12 @@ pub struct Overrides {
 
 /// Loads the scene at `path` over the default scene, or the default scene
 /// itself when `path` is `None`, and checks every value.
-pub fn load_scene(path: Option<&Path>) -> Result<WorldConfig, SceneError> {
+pub fn load_scene(path: Option<&Path>) -> Result<Scene, SceneError> {
     load_scene_with(path, &Overrides::default())
 }
 
 /// [`load_scene`], then applies command-line overrides and checks the result.
-pub fn load_scene_with(
-    path: Option<&Path>,
-    overrides: &Overrides,
-) -> Result<WorldConfig, SceneError> {
+pub fn load_scene_with(path: Option<&Path>, overrides: &Overrides) -> Result<Scene, SceneError> {
     match path {
         None => build(None, BUILTIN_ORIGIN, overrides),
         Some(path) => {
@@ -112,7 +122,7 @@ pub fn load_scene_with(
 
 /// Parses scene text over the default scene and checks every value;
 /// `origin` names the text in error messages (usually the file name).
-pub fn parse_scene(source: &str, origin: &str) -> Result<WorldConfig, SceneError> {
+pub fn parse_scene(source: &str, origin: &str) -> Result<Scene, SceneError> {
     parse_scene_with(source, origin, &Overrides::default())
 }
 
@@ -121,13 +131,13 @@ pub fn parse_scene_with(
     source: &str,
     origin: &str,
     overrides: &Overrides,
-) -> Result<WorldConfig, SceneError> {
+) -> Result<Scene, SceneError> {
     build(Some(source), origin, overrides)
 }
 
-/// Checks a configuration that did not come from a file (for instance one
-/// edited at run time) against the same rules as a scene file.
-pub fn validate(config: &WorldConfig) -> Result<(), SceneError> {
+/// Checks a scene that did not come from a file (for instance one edited at
+/// run time) against the same rules as a scene file.
+pub fn validate(scene: &Scene) -> Result<(), SceneError> {
     let sources = Sources {
         origin: BUILTIN_ORIGIN.to_owned(),
         from_file: false,
@@ -135,18 +145,14 @@ pub fn validate(config: &WorldConfig) -> Result<(), SceneError> {
         options: HashMap::new(),
     };
     Checker {
-        config,
+        scene,
         sources: &sources,
     }
     .check()
 }
 
-fn build(
-    source: Option<&str>,
-    origin: &str,
-    overrides: &Overrides,
-) -> Result<WorldConfig, SceneError> {
-    let mut config = WorldConfig::default();
+fn build(source: Option<&str>, origin: &str, overrides: &Overrides) -> Result<Scene, SceneError> {
+    let mut scene = Scene::default();
     let mut sources = Sources {
         origin: origin.to_owned(),
         from_file: source.is_some(),
@@ -161,25 +167,25 @@ fn build(
             origin,
             lines: HashMap::new(),
         };
-        overlay.apply(file, &mut config)?;
+        overlay.apply(file, &mut scene)?;
         sources.lines = overlay.lines;
     }
     if let Some(count) = overrides.balls {
-        config.balls.count = count;
+        scene.world.balls.count = count;
         sources
             .options
             .insert("balls.count".into(), "--balls".into());
     }
     if let Some(gravity) = overrides.gravity {
-        config.gravity = gravity;
+        scene.world.gravity = gravity;
         sources.options.insert("gravity".into(), "--gravity".into());
     }
     Checker {
-        config: &config,
+        scene: &scene,
         sources: &sources,
     }
     .check()?;
-    Ok(config)
+    Ok(scene)
 }
 
 /// 1-based line of a byte offset.
@@ -279,6 +285,7 @@ struct FileScene {
     fireball: Option<FileFireball>,
     grab: Option<FileGrab>,
     solver: Option<FileSolver>,
+    effects: Option<FileEffects>,
 }
 
 #[derive(Deserialize)]
@@ -350,6 +357,8 @@ struct FileFireball {
     speed: Option<Spanned<f64>>,
     spawn: Option<Spanned<Vec3>>,
     direction: Option<Spanned<Vec3>>,
+    consumes_balls: Option<Spanned<bool>>,
+    starts_active: Option<Spanned<bool>>,
 }
 
 #[derive(Deserialize)]
@@ -368,6 +377,47 @@ struct FileSolver {
     iterations: Option<Spanned<i64>>,
     bounce_threshold: Option<Spanned<f64>>,
     event_threshold: Option<Spanned<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileEffects {
+    /// Signed so that a negative count is a range error, not a type error.
+    capacity: Option<Spanned<i64>>,
+    trail: Option<FileTrail>,
+    wall_hit: Option<FileWallHit>,
+    ball_hit: Option<FileBallHit>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileTrail {
+    interval_min: Option<Spanned<f64>>,
+    interval_max: Option<Spanned<f64>>,
+    life: Option<Spanned<f64>>,
+    size: Option<Spanned<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileWallHit {
+    duration: Option<Spanned<f64>>,
+    rate: Option<Spanned<f64>>,
+    radius: Option<Spanned<f64>>,
+    life: Option<Spanned<f64>>,
+    size: Option<Spanned<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileBallHit {
+    duration: Option<Spanned<f64>>,
+    rate: Option<Spanned<f64>>,
+    radius: Option<Spanned<f64>>,
+    life: Option<Spanned<f64>>,
+    size: Option<Spanned<f64>>,
+    burst_life: Option<Spanned<f64>>,
+    burst_size: Option<Spanned<f64>>,
 }
 
 fn rgb(c: Vec3) -> Rgb {
@@ -434,7 +484,8 @@ impl Overlay<'_> {
         }
     }
 
-    fn apply(&mut self, file: FileScene, c: &mut WorldConfig) -> Result<(), SceneError> {
+    fn apply(&mut self, file: FileScene, scene: &mut Scene) -> Result<(), SceneError> {
+        let c = &mut scene.world;
         self.set("gravity", &mut c.gravity, file.gravity, |v| v);
 
         if let Some(room) = file.room {
@@ -589,6 +640,18 @@ impl Overlay<'_> {
                 f.direction,
                 DVec3::from_array,
             );
+            self.set(
+                "fireball.consumes_balls",
+                &mut dst.consumes_balls,
+                f.consumes_balls,
+                |v| v,
+            );
+            self.set(
+                "fireball.starts_active",
+                &mut dst.starts_active,
+                f.starts_active,
+                |v| v,
+            );
         }
 
         if let Some(g) = file.grab {
@@ -618,6 +681,78 @@ impl Overlay<'_> {
                 |v| v,
             );
         }
+
+        if let Some(e) = file.effects {
+            self.apply_effects(e, &mut scene.effects)?;
+        }
+        Ok(())
+    }
+
+    fn apply_effects(&mut self, e: FileEffects, c: &mut EffectsConfig) -> Result<(), SceneError> {
+        self.set_count(
+            "effects.capacity",
+            &mut c.capacity,
+            e.capacity,
+            PARTICLE_CAPACITY,
+        )?;
+
+        if let Some(t) = e.trail {
+            let dst = &mut c.trail;
+            self.set(
+                "effects.trail.interval_min",
+                &mut dst.interval_min,
+                t.interval_min,
+                |v| v,
+            );
+            self.set(
+                "effects.trail.interval_max",
+                &mut dst.interval_max,
+                t.interval_max,
+                |v| v,
+            );
+            self.set("effects.trail.life", &mut dst.life, t.life, |v| v);
+            self.set("effects.trail.size", &mut dst.size, t.size, |v| v);
+        }
+
+        if let Some(w) = e.wall_hit {
+            let dst = &mut c.wall_hit;
+            self.set(
+                "effects.wall_hit.duration",
+                &mut dst.duration,
+                w.duration,
+                |v| v,
+            );
+            self.set("effects.wall_hit.rate", &mut dst.rate, w.rate, |v| v);
+            self.set("effects.wall_hit.radius", &mut dst.radius, w.radius, |v| v);
+            self.set("effects.wall_hit.life", &mut dst.life, w.life, |v| v);
+            self.set("effects.wall_hit.size", &mut dst.size, w.size, |v| v);
+        }
+
+        if let Some(b) = e.ball_hit {
+            let dst = &mut c.ball_hit;
+            self.set(
+                "effects.ball_hit.duration",
+                &mut dst.duration,
+                b.duration,
+                |v| v,
+            );
+            self.set("effects.ball_hit.rate", &mut dst.rate, b.rate, |v| v);
+            self.set("effects.ball_hit.radius", &mut dst.radius, b.radius, |v| v);
+            self.set("effects.ball_hit.life", &mut dst.life, b.life, |v| v);
+            self.set("effects.ball_hit.size", &mut dst.size, b.size, |v| v);
+            self.set(
+                "effects.ball_hit.burst_life",
+                &mut dst.burst_life,
+                b.burst_life,
+                |v| v,
+            );
+            self.set(
+                "effects.ball_hit.burst_size",
+                &mut dst.burst_size,
+                b.burst_size,
+                |v| v,
+            );
+        }
         Ok(())
     }
 }
@@ -629,6 +764,10 @@ const ITERATIONS: (usize, usize) = (1, 256);
 const MAX_MASS: f64 = 1e6;
 const MAX_SPEED: f64 = 100.0;
 const MAX_FRICTION: f64 = 5.0;
+/// Longest effect time (seconds) and largest effect radius or size (metres).
+const MAX_EFFECT: f64 = 10.0;
+/// Most particles an effect may spawn per second.
+const MAX_RATE: f64 = 100_000.0;
 
 /// One end of an allowed interval.
 #[derive(Clone, Copy)]
@@ -732,7 +871,7 @@ fn rgb_text(c: Rgb) -> String {
 }
 
 struct Checker<'a> {
-    config: &'a WorldConfig,
+    scene: &'a Scene,
     sources: &'a Sources,
 }
 
@@ -802,7 +941,7 @@ impl Checker<'_> {
     }
 
     fn check(&self) -> Result<(), SceneError> {
-        let c = self.config;
+        let c = &self.scene.world;
         self.real("gravity", c.gravity, Bounds::closed(0.0, 100.0))?;
 
         // The room first: other ranges depend on its size.
@@ -902,11 +1041,48 @@ impl Checker<'_> {
             s.event_threshold,
             Bounds::closed(0.0, MAX_SPEED),
         )?;
+
+        self.check_effects()
+    }
+
+    fn check_effects(&self) -> Result<(), SceneError> {
+        let e = &self.scene.effects;
+        let time = Bounds::positive(MAX_EFFECT);
+        let length = Bounds::positive(MAX_EFFECT);
+        let rate = Bounds::closed(0.0, MAX_RATE);
+        self.count("effects.capacity", e.capacity, PARTICLE_CAPACITY)?;
+
+        let t = &e.trail;
+        self.real("effects.trail.interval_min", t.interval_min, time)?;
+        self.real_why(
+            "effects.trail.interval_max",
+            t.interval_max,
+            Bounds::closed(t.interval_min, MAX_EFFECT),
+            "at least effects.trail.interval_min",
+        )?;
+        self.real("effects.trail.life", t.life, time)?;
+        self.real("effects.trail.size", t.size, length)?;
+
+        let w = &e.wall_hit;
+        self.real("effects.wall_hit.duration", w.duration, time)?;
+        self.real("effects.wall_hit.rate", w.rate, rate)?;
+        self.real("effects.wall_hit.radius", w.radius, length)?;
+        self.real("effects.wall_hit.life", w.life, time)?;
+        self.real("effects.wall_hit.size", w.size, length)?;
+
+        let b = &e.ball_hit;
+        self.real("effects.ball_hit.duration", b.duration, time)?;
+        self.real("effects.ball_hit.rate", b.rate, rate)?;
+        self.real("effects.ball_hit.radius", b.radius, length)?;
+        self.real("effects.ball_hit.life", b.life, time)?;
+        self.real("effects.ball_hit.size", b.size, length)?;
+        self.real("effects.ball_hit.burst_life", b.burst_life, time)?;
+        self.real("effects.ball_hit.burst_size", b.burst_size, length)?;
         Ok(())
     }
 
     fn check_tumblers(&self, fits: Bounds, fits_why: &str) -> Result<(), SceneError> {
-        let c = self.config;
+        let c = &self.scene.world;
         let t = &c.tumblers;
         let size = c.room.size;
         self.real(
@@ -1021,7 +1197,7 @@ mod tests {
 
     const DEFAULT_SCENE: &str = include_str!("../../../scenes/default.toml");
 
-    fn parse(source: &str) -> Result<WorldConfig, SceneError> {
+    fn parse(source: &str) -> Result<Scene, SceneError> {
         parse_scene(source, "test.toml")
     }
 
@@ -1036,49 +1212,142 @@ mod tests {
     fn shipped_default_file_equals_builtin_default() {
         let parsed = parse_scene(DEFAULT_SCENE, "scenes/default.toml").unwrap();
         assert_eq!(
-            parsed,
+            parsed.world,
             WorldConfig::default(),
             "scenes/default.toml must spell out WorldConfig::default() exactly"
+        );
+        assert_eq!(
+            parsed.effects,
+            EffectsConfig::default(),
+            "scenes/default.toml must spell out EffectsConfig::default() exactly"
         );
     }
 
     #[test]
     fn builtin_default_is_valid() {
-        validate(&WorldConfig::default()).unwrap();
-        assert_eq!(load_scene(None).unwrap(), WorldConfig::default());
+        validate(&Scene::default()).unwrap();
+        assert_eq!(load_scene(None).unwrap(), Scene::default());
     }
 
     #[test]
     fn empty_file_is_the_default() {
-        assert_eq!(parse("").unwrap(), WorldConfig::default());
-        assert_eq!(parse("# nothing\n").unwrap(), WorldConfig::default());
+        assert_eq!(parse("").unwrap(), Scene::default());
+        assert_eq!(parse("# nothing\n").unwrap(), Scene::default());
     }
 
     #[test]
     fn one_key_changes_only_that_key() {
         let parsed = parse("[balls]\nrestitution = 0.5\n").unwrap();
-        let mut expected = WorldConfig::default();
-        expected.balls.restitution = 0.5;
+        let mut expected = Scene::default();
+        expected.world.balls.restitution = 0.5;
         assert_eq!(parsed, expected);
 
         let parsed = parse("gravity = 3.5").unwrap();
-        let expected = WorldConfig {
-            gravity: 3.5,
-            ..WorldConfig::default()
-        };
+        let mut expected = Scene::default();
+        expected.world.gravity = 3.5;
         assert_eq!(parsed, expected);
 
         let parsed = parse("[room.colors]\nleft = [0, 0, 1]\n").unwrap();
-        let mut expected = WorldConfig::default();
-        expected.room.colors[2] = [0.0, 0.0, 1.0];
+        let mut expected = Scene::default();
+        expected.world.room.colors[2] = [0.0, 0.0, 1.0];
         assert_eq!(parsed, expected);
+    }
+
+    #[test]
+    fn one_effects_key_changes_only_that_key() {
+        let parsed = parse("[effects.wall_hit]\nrate = 500\n").unwrap();
+        let mut expected = Scene::default();
+        expected.effects.wall_hit.rate = 500.0;
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[effects]\ncapacity = 100\n").unwrap();
+        let mut expected = Scene::default();
+        expected.effects.capacity = 100;
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[effects.ball_hit]\nburst_size = 0.25\n").unwrap();
+        let mut expected = Scene::default();
+        expected.effects.ball_hit.burst_size = 0.25;
+        assert_eq!(parsed, expected);
+    }
+
+    #[test]
+    fn consumes_balls_can_be_turned_off() {
+        let parsed = parse("[fireball]\nconsumes_balls = false\n").unwrap();
+        let mut expected = Scene::default();
+        expected.world.fireball.consumes_balls = false;
+        assert_eq!(parsed, expected);
+        assert!(
+            parse("[fireball]\nconsumes_balls = true\n")
+                .unwrap()
+                .world
+                .fireball
+                .consumes_balls
+        );
+
+        let text = error_text("[fireball]\nconsumes_balls = 0\n");
+        assert!(text.starts_with("test.toml:2: "), "{text}");
+    }
+
+    #[test]
+    fn effects_out_of_range_names_line_key_and_range() {
+        let text = error_text("[effects.trail]\nlife = 0.5\nsize = 12\n");
+        assert_eq!(
+            text,
+            "test.toml:3: effects.trail.size = 12 is out of range: allowed > 0 and <= 10"
+        );
+
+        let text = error_text("[effects]\ncapacity = 8\n");
+        assert_eq!(
+            text,
+            "test.toml:2: effects.capacity = 8 is out of range: allowed 16 ..= 1000000"
+        );
+
+        let text = error_text("[effects]\ncapacity = -5\n");
+        assert_eq!(
+            text,
+            "test.toml:2: effects.capacity = -5 is out of range: allowed 16 ..= 1000000"
+        );
+
+        let text = error_text("[effects.ball_hit]\nrate = 200000\n");
+        assert_eq!(
+            text,
+            "test.toml:2: effects.ball_hit.rate = 200000 is out of range: allowed 0 ..= 100000"
+        );
+
+        let text = error_text("\n[effects.wall_hit]\nduration = 0\n");
+        assert_eq!(
+            text,
+            "test.toml:3: effects.wall_hit.duration = 0 is out of range: allowed > 0 and <= 10"
+        );
+
+        let text = error_text("[effects.trail]\ninterval_min = 0.2\ninterval_max = 0.1\n");
+        assert_eq!(
+            text,
+            "test.toml:3: effects.trail.interval_max = 0.1 is out of range: \
+             allowed 0.2 ..= 10 (at least effects.trail.interval_min)"
+        );
+
+        let text = error_text("[effects.trail]\ninterval_min = 0.5\n");
+        assert!(
+            text.starts_with(
+                "test.toml: effects.trail.interval_max = 0.03 (built-in default) is out of range"
+            ),
+            "{text}"
+        );
+
+        let text = error_text("[effects.ball_hit]\nglow = 1\n");
+        assert!(
+            text.starts_with("test.toml:2: unknown key `effects.ball_hit.glow`"),
+            "{text}"
+        );
     }
 
     #[test]
     fn integers_are_accepted_for_reals() {
         let parsed = parse("gravity = 10\n[room]\nsize = [6, 3, 8]\n").unwrap();
-        assert_eq!(parsed.gravity, 10.0);
-        assert_eq!(parsed.room.size, DVec3::new(6.0, 3.0, 8.0));
+        assert_eq!(parsed.world.gravity, 10.0);
+        assert_eq!(parsed.world.room.size, DVec3::new(6.0, 3.0, 8.0));
     }
 
     #[test]
@@ -1207,8 +1476,8 @@ mod tests {
     #[test]
     fn zero_balls_and_zero_tumblers_are_valid() {
         let parsed = parse("[balls]\ncount = 0\n[tumblers]\nplacement = []\n").unwrap();
-        assert_eq!(parsed.balls.count, 0);
-        assert!(parsed.tumblers.placements.is_empty());
+        assert_eq!(parsed.world.balls.count, 0);
+        assert!(parsed.world.tumblers.placements.is_empty());
     }
 
     #[test]
@@ -1219,7 +1488,7 @@ mod tests {
         )
         .unwrap();
         assert_eq!(
-            parsed.tumblers.placements,
+            parsed.world.tumblers.placements,
             vec![
                 TumblerPlacement {
                     x: 1.0,
@@ -1269,8 +1538,8 @@ mod tests {
             gravity: Some(1.5),
         };
         let parsed = parse_scene_with("gravity = 3\n", "test.toml", &overrides).unwrap();
-        assert_eq!(parsed.balls.count, 7);
-        assert_eq!(parsed.gravity, 1.5);
+        assert_eq!(parsed.world.balls.count, 7);
+        assert_eq!(parsed.world.gravity, 1.5);
 
         let overrides = Overrides {
             balls: None,

@@ -314,3 +314,51 @@ fn make_tumbler_obj_writes_the_shipped_mesh_for_the_default_scene() {
         "the command and assets/tumbler.obj disagree"
     );
 }
+
+#[test]
+fn a_scene_can_start_with_the_fireball_flying() {
+    let path = scene_file("fireball-on.toml", "[fireball]\nstarts_active = true\n");
+    let path = path.to_str().expect("UTF-8 path");
+    let output = rolypoly(&["simulate", "--steps", "3", "--scene", path, "--trace", "-"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let lines = json_lines(&stdout(&output));
+    assert!(
+        lines[1]["fireball"].is_object(),
+        "no fireball at step 0: {}",
+        lines[1]["fireball"]
+    );
+    let plain = rolypoly(&["simulate", "--steps", "3", "--trace", "-"]);
+    assert!(json_lines(&stdout(&plain))[1]["fireball"].is_null());
+}
+
+#[test]
+fn render_with_the_fireball_draws_its_effects() {
+    let (with, without) = (scratch("fireball.png"), scratch("no-fireball.png"));
+    for (out, extra) in [(&with, Some("--fireball")), (&without, None)] {
+        let out_str = out.to_str().expect("UTF-8 path");
+        let mut args = vec![
+            "render", "--time", "0.4", "--size", "160x90", "--out", out_str,
+        ];
+        args.extend(extra);
+        let output = rolypoly(&args);
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let (a, b) = (
+        image::open(&with).expect("png").to_rgba8(),
+        image::open(&without).expect("png").to_rgba8(),
+    );
+    let changed = a
+        .pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| {
+            p.0[..3]
+                .iter()
+                .zip(&q.0[..3])
+                .any(|(x, y)| x.abs_diff(*y) > 30)
+        })
+        .count();
+    assert!(
+        changed > 20,
+        "the fireball and its trail changed only {changed} pixels"
+    );
+}
