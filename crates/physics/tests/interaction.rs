@@ -128,10 +128,12 @@ fn released_tumbler_keeps_its_motion_and_rights_itself() {
 fn fireball_keeps_its_speed_ignores_gravity_and_reports_hits() {
     let mut w = build(WorldConfig::default(), 3);
     assert!(w.fireball().is_none());
-    w.launch_fireball(Some((
-        DVec3::new(0.0, 2.0, 0.0),
-        DVec3::new(1.0, -0.3, 0.6),
-    )));
+    // Straight down onto ball 0 from just above it, so that it meets a ball
+    // early; from then on it bounces about the room.
+    let below = w.balls().positions()[0];
+    let room = *w.room();
+    let start = room.clamp_sphere(below + DVec3::new(0.0, 0.6, 0.0), 0.3);
+    w.launch_fireball(Some((start, below - start)));
     let speed = w.fireball().unwrap().speed;
     let (mut walls, mut balls, mut tumblers) = (0, 0, 0);
     for _ in 0..(20.0 / w.config().solver.dt) as usize {
