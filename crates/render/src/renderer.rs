@@ -147,6 +147,11 @@ pub struct Renderer {
     shadow_pipeline: wgpu::RenderPipeline,
     tonemap_pipeline: wgpu::RenderPipeline,
     tonemap_layout: wgpu::BindGroupLayout,
+    cursor_pipeline: wgpu::RenderPipeline,
+    cursor_buffer: wgpu::Buffer,
+    cursor_bind_group: wgpu::BindGroup,
+    /// Where to draw the arrow cursor (pixels), if anywhere.
+    cursor: Option<glam::Vec2>,
     globals: wgpu::Buffer,
     tonemap_params: wgpu::Buffer,
     scene_bind_group: wgpu::BindGroup,
@@ -455,6 +460,56 @@ impl Renderer {
             cache: None,
         });
 
+        let cursor_shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("cursor.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/cursor.wgsl").into()),
+        });
+        let cursor_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("cursor"),
+            entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX)],
+        });
+        let cursor_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("cursor"),
+            size: 16,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let cursor_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("cursor"),
+            layout: &cursor_layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: cursor_buffer.as_entire_binding(),
+            }],
+        });
+        let cursor_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("cursor"),
+                bind_group_layouts: &[Some(&cursor_layout)],
+                immediate_size: 0,
+            });
+        let cursor_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("cursor"),
+            layout: Some(&cursor_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &cursor_shader,
+                entry_point: Some("vs_cursor"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &cursor_shader,
+                entry_point: Some("fs_cursor"),
+                compilation_options: Default::default(),
+                targets: &[Some(output_format.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+
         let instance_capacity = 256;
         Renderer {
             settings,
@@ -465,6 +520,10 @@ impl Renderer {
             shadow_pipeline,
             tonemap_pipeline,
             tonemap_layout,
+            cursor_pipeline,
+            cursor_buffer,
+            cursor_bind_group,
+            cursor: None,
             globals,
             tonemap_params,
             scene_bind_group,
@@ -478,6 +537,12 @@ impl Renderer {
             instances: Vec::new(),
             targets: None,
         }
+    }
+
+    /// Draws the white arrow cursor with its tip at `pixel` (from the
+    /// frame's top left) in the frames that follow, or no cursor.
+    pub fn set_cursor(&mut self, pixel: Option<glam::Vec2>) {
+        self.cursor = pixel;
     }
 
     pub fn settings(&self) -> RenderSettings {
@@ -639,6 +704,16 @@ impl Renderer {
             pass.set_bind_group(0, &targets.tonemap_bind_group, &[]);
             pass.draw(0..3, 0..1);
             draw_calls += 1;
+            if let Some(at) = self.cursor {
+                let place = [at.x, at.y, width as f32, height as f32];
+                gpu.queue
+                    .write_buffer(&self.cursor_buffer, 0, bytemuck::cast_slice(&place));
+                pass.set_pipeline(&self.cursor_pipeline);
+                pass.set_bind_group(0, &self.cursor_bind_group, &[]);
+                // Outline, then arrow.
+                pass.draw(0..15, 0..2);
+                draw_calls += 1;
+            }
         }
         let cpu_time = start.elapsed();
         gpu.queue.submit([encoder.finish()]);

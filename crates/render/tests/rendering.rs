@@ -264,3 +264,25 @@ fn a_zero_sized_frame_is_an_error_not_a_panic() {
         .expect("must fail");
     assert!(err.to_string().contains("0x10"), "{err}");
 }
+
+#[test]
+fn grab_mode_draws_a_white_arrow_cursor_where_it_is_told() {
+    let mut config = WorldConfig::default();
+    config.balls.count = 0;
+    let world = world_at(&config, 1, 0.0);
+    let view = SceneView::from_world(&world, None);
+    let camera = Camera::overview(view.room_size);
+    let mut snap = snapshot(&config, RenderSettings::default(), 160, 90);
+    let plain = snap.capture(&view, &camera).expect("frame");
+    snap.renderer.set_cursor(Some(Vec2::new(40.0, 20.0)));
+    let with = snap.capture(&view, &camera).expect("frame");
+    // Inside the arrow, just below its tip: white; its outline is black.
+    let inside = with.get_pixel(42, 30).0;
+    assert!(inside[..3].iter().all(|&c| c > 240), "{inside:?}");
+    let outline = with.get_pixel(39, 26).0;
+    assert!(outline[..3].iter().all(|&c| c < 40), "{outline:?}");
+    // Elsewhere the frame is untouched.
+    assert_eq!(with.get_pixel(120, 70), plain.get_pixel(120, 70));
+    snap.renderer.set_cursor(None);
+    assert_eq!(snap.capture(&view, &camera).expect("frame"), plain);
+}

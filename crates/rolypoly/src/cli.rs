@@ -9,15 +9,12 @@ use crate::scene::Overrides;
 /// Help section of the options shared by every command.
 const SCENE_HEADING: &str = "Scene options";
 
-/// How long `rolypoly` runs when it is given no subcommand, in seconds.
-pub const DEFAULT_SECONDS: f64 = 10.0;
-
 /// rolypoly: a 3D toy room where roly-poly tumblers rock, balls bounce and a
 /// fireball tears through.
 ///
-/// Without a subcommand it simulates the scene for 10 seconds and prints a
-/// summary. Every constant of a scene comes from a TOML scene file that
-/// overrides the built-in default (see scenes/default.toml for the format).
+/// Without a subcommand it opens the window on the scene. Every constant of a
+/// scene comes from a TOML scene file that overrides the built-in default
+/// (see scenes/default.toml for the format).
 #[derive(Debug, Parser)]
 #[command(
     name = "rolypoly",
@@ -30,8 +27,71 @@ pub struct Cli {
     #[command(flatten)]
     pub scene: SceneArgs,
 
+    #[command(flatten)]
+    pub window: WindowArgs,
+
     #[command(subcommand)]
     pub command: Option<Command>,
+}
+
+/// Help section of the window's options.
+const WINDOW_HEADING: &str = "Window options (no subcommand)";
+
+/// How the window opens and behaves.
+#[derive(Debug, Args)]
+pub struct WindowArgs {
+    /// Window size in pixels, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size, help_heading = WINDOW_HEADING)]
+    pub window_size: (u32, u32),
+
+    /// Open full screen.
+    #[arg(long, help_heading = WINDOW_HEADING)]
+    pub fullscreen: bool,
+
+    /// Draw as fast as possible instead of at the display's rate (to measure).
+    #[arg(long, help_heading = WINDOW_HEADING)]
+    pub no_vsync: bool,
+
+    /// Multisample anti-aliasing in the window: 4 or 1 (off).
+    #[arg(long = "window-msaa", value_name = "N", default_value_t = 4, value_parser = parse_msaa, help_heading = WINDOW_HEADING)]
+    pub msaa: u32,
+
+    /// Print every change of state (keys, modes, grabs, screenshots) as one
+    /// JSON object per line on standard output.
+    #[arg(long, help_heading = WINDOW_HEADING)]
+    pub log_events: bool,
+
+    /// Folder that F12 writes screenshots into.
+    #[arg(long, value_name = "DIR", default_value = ".", help_heading = WINDOW_HEADING)]
+    pub screenshot_dir: PathBuf,
+
+    /// Walking speed of W/A/S/D in m/s (0.1 ..= 50).
+    #[arg(long, value_name = "M/S", default_value_t = 2.5, value_parser = parse_speed, help_heading = WINDOW_HEADING)]
+    pub move_speed: f32,
+
+    /// Mouse-look sensitivity in degrees per pixel (0.01 ..= 5).
+    #[arg(long, value_name = "DEG", default_value_t = 0.15, value_parser = parse_look, help_heading = WINDOW_HEADING)]
+    pub look_speed: f32,
+}
+
+fn parse_bounded(text: &str, lo: f32, hi: f32) -> Result<f32, String> {
+    let v: f32 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number"))?;
+    if v.is_finite() && (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v} is out of range: allowed {lo} ..= {hi}"))
+    }
+}
+
+fn parse_speed(text: &str) -> Result<f32, String> {
+    parse_bounded(text, 0.1, 50.0)
+}
+
+fn parse_look(text: &str) -> Result<f32, String> {
+    parse_bounded(text, 0.01, 5.0)
 }
 
 /// Options that choose and adjust the scene; accepted before or after the

@@ -9,13 +9,14 @@ pub mod render;
 pub mod scene;
 pub mod simulate;
 pub mod trace;
+pub mod window;
 
 use std::io::{self, Write};
 
 use anyhow::Context;
 use rolypoly_physics::World;
 
-use cli::{Cli, Command, DEFAULT_SECONDS, SimulateArgs, steps_for};
+use cli::{Cli, Command, SimulateArgs, steps_for};
 use scene::BUILTIN_ORIGIN;
 
 /// Runs the program for parsed arguments.
@@ -34,14 +35,24 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
 
     match &cli.command {
         None => {
-            let options = simulate::Options {
-                steps: steps_for(DEFAULT_SECONDS, dt),
-                fireball: false,
+            let w = &cli.window;
+            let spheres = &world.config().tumblers.spheres;
+            let mesh = rolypoly_render::mesh_for(
+                spheres,
+                &rolypoly_physics::WorldConfig::default().tumblers.spheres,
+            )?;
+            let options = window::WindowOptions {
+                size: w.window_size,
+                fullscreen: w.fullscreen,
+                vsync: !w.no_vsync,
+                msaa: w.msaa,
+                log_events: w.log_events,
                 seed: scene_args.seed,
-                every: 1,
+                screenshot_dir: w.screenshot_dir.clone(),
+                move_speed: w.move_speed,
+                look_speed: w.look_speed.to_radians(),
             };
-            let summary = simulate::run::<io::Sink>(&mut world, &scene_name, &options, None)?;
-            print_summary(&summary)
+            window::run(world, scene.effects, mesh, options)
         }
         Some(Command::Simulate(args)) => {
             simulate_command(&mut world, &scene_name, args, scene_args.seed, dt)

@@ -111,12 +111,15 @@ fn summary_without_trace() {
 }
 
 #[test]
-fn no_subcommand_simulates_ten_seconds() {
-    let output = rolypoly(&["--balls", "5"]);
-    assert!(output.status.success(), "{}", stderr(&output));
-    let text = stdout(&output);
-    assert!(text.contains("Simulated 1200 steps"), "{text}");
-    assert!(text.contains("built-in default scene"), "{text}");
+fn no_subcommand_without_a_display_is_a_clear_error() {
+    let output = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(["--balls", "5"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("runs");
+    let err = assert_clean_failure(&output);
+    assert!(err.contains("display"), "{err}");
 }
 
 #[test]

@@ -1,0 +1,268 @@
+//! The on-screen HUD (egui): frame rate, timings, counts, modes, the seed,
+//! a small plot of the total energy, and the help panel (I7).
+
+use rolypoly_fx::Effects;
+use rolypoly_physics::World;
+use rolypoly_render::Gpu;
+use std::collections::VecDeque;
+use winit::window::Window;
+
+/// The numbers the HUD shows, updated every frame.
+pub struct HudState {
+    pub seed: u64,
+    pub fps: f64,
+    pub frame_time: f64,
+    pub step_time: f64,
+    pub render_cpu: f64,
+    pub balls_alive: usize,
+    pub balls_total: usize,
+    pub particles: (usize, usize),
+    pub dropped: u64,
+    pub paused: bool,
+    pub grabbing: bool,
+    pub sim_time: f64,
+    /// Total energy, one sample every few frames.
+    pub energy: VecDeque<f32>,
+    frames: u64,
+}
+
+const ENERGY_SAMPLES: usize = 240;
+
+impl HudState {
+    pub fn new(seed: u64, balls: usize) -> HudState {
+        HudState {
+            seed,
+            fps: 0.0,
+            frame_time: 0.0,
+            step_time: 0.0,
+            render_cpu: 0.0,
+            balls_alive: balls,
+            balls_total: balls,
+            particles: (0, 0),
+            dropped: 0,
+            paused: false,
+            grabbing: false,
+            sim_time: 0.0,
+            energy: VecDeque::with_capacity(ENERGY_SAMPLES),
+            frames: 0,
+        }
+    }
+
+    pub fn frame(
+        &mut self,
+        elapsed: f64,
+        world: &World,
+        fx: &Effects,
+        paused: bool,
+        grabbing: bool,
+    ) {
+        self.frames += 1;
+        if elapsed > 0.0 {
+            // A smoothed rate, so the number can be read.
+            self.frame_time = 0.9 * self.frame_time + 0.1 * elapsed;
+            self.fps = 1.0 / self.frame_time.max(1e-6);
+        }
+        self.balls_alive = world.balls().alive().iter().filter(|a| **a).count();
+        self.balls_total = world.balls().len();
+        let stats = fx.stats();
+        self.particles = (stats.live, stats.capacity);
+        self.dropped = stats.dropped;
+        self.paused = paused;
+        self.grabbing = grabbing;
+        self.sim_time = world.time();
+        if self.frames % 4 == 0 && !paused {
+            if self.energy.len() == ENERGY_SAMPLES {
+                self.energy.pop_front();
+            }
+            self.energy.push_back(world.energy().total() as f32);
+        }
+    }
+}
+
+const KEYS: [(&str, &str); 11] = [
+    ("mouse", "look around"),
+    ("W A S D", "move"),
+    ("F", "fireball on / off"),
+    ("hold Left Shift", "freeze time (the camera still moves)"),
+    ("G", "grab mode: drag tumblers with the left button"),
+    ("I", "re-initialise the balls"),
+    ("H or F1", "this help"),
+    ("F12", "screenshot (PNG)"),
+    ("Esc", "release the mouse"),
+    ("Esc again", "quit"),
+    ("click", "capture the mouse again"),
+];
+
+pub struct Hud {
+    context: egui::Context,
+    input: egui_winit::State,
+    renderer: egui_wgpu::Renderer,
+}
+
+impl Hud {
+    pub fn new(window: &Window, gpu: &Gpu, format: wgpu::TextureFormat) -> Hud {
+        let context = egui::Context::default();
+        let input = egui_winit::State::new(
+            context.clone(),
+            egui::ViewportId::ROOT,
+            window,
+            None,
+            None,
+            None,
+        );
+        let renderer =
+            egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
+        Hud {
+            context,
+            input,
+            renderer,
+        }
+    }
+
+    pub fn on_event(&mut self, window: &Window, event: &winit::event::WindowEvent) {
+        let _ = self.input.on_window_event(window, event);
+    }
+
+    /// Draws the HUD over the frame in `target`.
+    pub fn draw(
+        &mut self,
+        window: &Window,
+        gpu: &Gpu,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        s: &HudState,
+        help: bool,
+    ) {
+        let raw = self.input.take_egui_input(window);
+        let mut output = self.context.run_pass(raw, |ctx| {
+            egui::Window::new("rolypoly")
+                .anchor(egui::Align2::LEFT_TOP, [8.0, 8.0])
+                .resizable(false)
+                .collapsible(true)
+                .show(ctx, |ui| {
+                    ui.label(format!(
+                        "{:.0} fps, {:.1} ms a frame",
+                        s.fps,
+                        1e3 * s.frame_time
+                    ));
+                    ui.label(format!(
+                        "physics {:.3} ms a step, rendering CPU {:.2} ms",
+                        1e3 * s.step_time,
+                        1e3 * s.render_cpu
+                    ));
+                    ui.label(format!("balls {} of {}", s.balls_alive, s.balls_total));
+                    ui.label(format!(
+                        "particles {} of {} ({} dropped)",
+                        s.particles.0, s.particles.1, s.dropped
+                    ));
+                    ui.label(format!("time {:.2} s, seed {}", s.sim_time, s.seed));
+                    let mut modes = Vec::new();
+                    if s.paused {
+                        modes.push("PAUSED");
+                    }
+                    if s.grabbing {
+                        modes.push("GRAB MODE");
+                    }
+                    if !modes.is_empty() {
+                        ui.colored_label(egui::Color32::from_rgb(255, 200, 80), modes.join("  "));
+                    }
+                    energy_plot(ui, &s.energy);
+                    ui.small("H or F1: keys");
+                });
+            if help {
+                egui::Window::new("Keys")
+                    .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
+                    .resizable(false)
+                    .show(ctx, |ui| {
+                        egui::Grid::new("keys").striped(true).show(ui, |ui| {
+                            for (key, what) in KEYS {
+                                ui.strong(key);
+                                ui.label(what);
+                                ui.end_row();
+                            }
+                        });
+                    });
+            }
+        });
+        self.input
+            .handle_platform_output(window, output.platform_output);
+        let pixels_per_point = output.pixels_per_point;
+        let jobs = self.context.tessellate(output.shapes, pixels_per_point);
+        let screen = egui_wgpu::ScreenDescriptor {
+            size_in_pixels: size,
+            pixels_per_point,
+        };
+        // Texture changes must be applied (and taken out) every frame.
+        for (id, deltas) in output.textures_delta.set.drain() {
+            for delta in &deltas {
+                self.renderer
+                    .update_texture(&gpu.device, &gpu.queue, id, delta);
+            }
+        }
+        let mut encoder = gpu
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("hud") });
+        let extra =
+            self.renderer
+                .update_buffers(&gpu.device, &gpu.queue, &mut encoder, &jobs, &screen);
+        {
+            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("hud"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: target,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: None,
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            let mut pass = pass.forget_lifetime();
+            self.renderer.render(&mut pass, &jobs, &screen);
+        }
+        gpu.queue
+            .submit(extra.into_iter().chain([encoder.finish()]));
+        for id in output.textures_delta.free.drain() {
+            self.renderer.free_texture(&id);
+        }
+    }
+}
+
+/// Total energy over the last seconds, as a line.
+fn energy_plot(ui: &mut egui::Ui, samples: &VecDeque<f32>) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(200.0, 40.0), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 2.0, egui::Color32::from_black_alpha(80));
+    if samples.len() < 2 {
+        return;
+    }
+    let (lo, hi) = samples
+        .iter()
+        .fold((f32::MAX, f32::MIN), |(lo, hi), &e| (lo.min(e), hi.max(e)));
+    let span = (hi - lo).max(1e-3);
+    let points: Vec<egui::Pos2> = samples
+        .iter()
+        .enumerate()
+        .map(|(i, &e)| {
+            let x = rect.left() + rect.width() * i as f32 / (ENERGY_SAMPLES - 1) as f32;
+            let y = rect.bottom() - rect.height() * (e - lo) / span;
+            egui::pos2(x, y)
+        })
+        .collect();
+    painter.add(egui::Shape::line(
+        points,
+        egui::Stroke::new(1.5, egui::Color32::from_rgb(120, 220, 255)),
+    ));
+    painter.text(
+        rect.left_top() + egui::vec2(4.0, 2.0),
+        egui::Align2::LEFT_TOP,
+        format!("energy {:.1} J", samples.back().copied().unwrap_or(0.0)),
+        egui::FontId::proportional(11.0),
+        egui::Color32::WHITE,
+    );
+}

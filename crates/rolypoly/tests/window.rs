@@ -1,0 +1,317 @@
+//! The window, used as a person uses it: the real binary under a virtual X
+//! display (Xvfb), driven by xdotool, each step checked from the program's
+//! own log of state changes (`--log-events`) and from a screenshot.
+//!
+//! Needs `Xvfb` and `xdotool` (Debian: `apt-get install xvfb xdotool`);
+//! without them the test fails and says so.
+
+use serde_json::Value;
+use std::io::{BufRead, BufReader};
+use std::path::PathBuf;
+use std::process::{Child, Command, Stdio};
+use std::sync::mpsc::{Receiver, channel};
+use std::time::{Duration, Instant};
+
+/// Kills a child process when dropped, whatever happens in the test.
+struct Guard(Child);
+
+impl Drop for Guard {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+fn tool(name: &str) -> PathBuf {
+    let found = std::env::var_os("PATH")
+        .into_iter()
+        .flat_map(|p| std::env::split_paths(&p).collect::<Vec<_>>())
+        .map(|dir| dir.join(name))
+        .find(|p| p.is_file());
+    found.unwrap_or_else(|| {
+        panic!("`{name}` is needed for the window test: apt-get install xvfb xdotool")
+    })
+}
+
+/// Starts Xvfb on a free display number and returns it with its guard.
+fn start_display() -> (String, Guard) {
+    let xvfb = tool("Xvfb");
+    for n in 90..120 {
+        if PathBuf::from(format!("/tmp/.X{n}-lock")).exists() {
+            continue;
+        }
+        let display = format!(":{n}");
+        let child = Command::new(&xvfb)
+            .args([
+                display.as_str(),
+                "-screen",
+                "0",
+                "1024x768x24",
+                "-nolisten",
+                "tcp",
+            ])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("Xvfb starts");
+        let guard = Guard(child);
+        let deadline = Instant::now() + Duration::from_secs(10);
+        while Instant::now() < deadline {
+            let ok = Command::new(tool("xdotool"))
+                .args(["getdisplaygeometry"])
+                .env("DISPLAY", &display)
+                .output()
+                .is_ok_and(|o| o.status.success());
+            if ok {
+                return (display, guard);
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+    panic!("could not start Xvfb on any display :90..:119");
+}
+
+struct Session {
+    display: String,
+    window: String,
+    lines: Receiver<Value>,
+    seen: Vec<Value>,
+}
+
+impl Session {
+    fn xdotool(&self, args: &[&str]) {
+        let status = Command::new(tool("xdotool"))
+            .args(args)
+            .env("DISPLAY", &self.display)
+            .status()
+            .expect("xdotool runs");
+        assert!(status.success(), "xdotool {args:?} failed");
+    }
+
+    /// Waits (software rendering is slow) for a logged event matching `want`.
+    fn expect(&mut self, what: &str, want: impl Fn(&Value) -> bool) -> Value {
+        let deadline = Instant::now() + Duration::from_secs(60);
+        while Instant::now() < deadline {
+            if let Ok(v) = self.lines.recv_timeout(Duration::from_millis(200)) {
+                self.seen.push(v.clone());
+                if want(&v) {
+                    return v;
+                }
+            }
+        }
+        panic!("never saw {what}; the log so far: {:#?}", self.seen);
+    }
+
+    fn settle(&self) {
+        std::thread::sleep(Duration::from_millis(600));
+    }
+}
+
+fn number(v: &Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+#[test]
+fn a_person_flies_shoots_pauses_grabs_resets_and_screenshots() {
+    let (display, _xvfb) = start_display();
+    let shots = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window-shots");
+    let _ = std::fs::remove_dir_all(&shots);
+    std::fs::create_dir_all(&shots).expect("scratch folder");
+    let runtime = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("xdg-runtime");
+    std::fs::create_dir_all(&runtime).expect("runtime folder");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args([
+            "--log-events",
+            "--window-size",
+            "480x270",
+            "--seed",
+            "3",
+            "--screenshot-dir",
+        ])
+        .arg(&shots)
+        .env("DISPLAY", &display)
+        .env_remove("WAYLAND_DISPLAY")
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .spawn()
+        .expect("rolypoly starts");
+    let stdout = child.stdout.take().expect("stdout");
+    let app = Guard(child);
+    let (send, lines) = channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+            if let Ok(v) = serde_json::from_str::<Value>(&line) {
+                let _ = send.send(v);
+            }
+        }
+    });
+    let mut s = Session {
+        display,
+        window: String::new(),
+        lines,
+        seen: Vec::new(),
+    };
+    let ready = s.expect("the window to open", |v| v["event"] == "ready");
+    assert_eq!(
+        (ready["width"].as_u64(), ready["height"].as_u64()),
+        (Some(480), Some(270))
+    );
+    let found = Command::new(tool("xdotool"))
+        .args(["search", "--sync", "--name", "^rolypoly$"])
+        .env("DISPLAY", &s.display)
+        .output()
+        .expect("xdotool search");
+    s.window = String::from_utf8_lossy(&found.stdout)
+        .lines()
+        .next()
+        .expect("the window exists")
+        .to_owned();
+    let w = s.window.clone();
+    s.xdotool(&["windowfocus", "--sync", &w]);
+    s.settle();
+
+    // Mouse look: move right of the centre; the view turns.
+    s.xdotool(&["mousemove", "--window", &w, "240", "135"]);
+    s.settle();
+    s.xdotool(&["mousemove", "--window", &w, "300", "135"]);
+    let turned = s.expect("the camera to turn", |v| v["event"] == "camera");
+    assert!(number(&turned, "yaw").abs() > 0.01, "{turned}");
+
+    // W: the camera walks forwards.
+    let before = turned["position"].clone();
+    s.xdotool(&["keydown", "w"]);
+    std::thread::sleep(Duration::from_millis(300));
+    s.xdotool(&["keyup", "w"]);
+    let walked = s.expect("the camera to move", |v| {
+        v["event"] == "camera" && v["position"] != before
+    });
+    assert_ne!(walked["position"], before);
+
+    // F: the fireball appears.
+    s.xdotool(&["key", "f"]);
+    s.expect("the fireball", |v| {
+        v["event"] == "fireball" && v["on"] == true
+    });
+
+    // Hold Left Shift: time stops while the camera still turns.
+    s.xdotool(&["keydown", "Shift_L"]);
+    let paused = s.expect("the pause", |v| {
+        v["event"] == "pause" && v["paused"] == true
+    });
+    let frozen_at = number(&paused, "sim_time");
+    s.settle();
+    s.xdotool(&["mousemove", "--window", &w, "180", "135"]);
+    let looked = s.expect("the camera to turn while paused", |v| {
+        v["event"] == "camera"
+    });
+    assert_eq!(
+        number(&looked, "sim_time"),
+        frozen_at,
+        "time moved while paused"
+    );
+    s.settle();
+    s.xdotool(&["keyup", "Shift_L"]);
+    let resumed = s.expect("the end of the pause", |v| {
+        v["event"] == "pause" && v["paused"] == false
+    });
+    assert_eq!(
+        number(&resumed, "sim_time"),
+        frozen_at,
+        "time moved while paused"
+    );
+    s.xdotool(&["key", "f"]);
+    s.expect("the fireball gone", |v| {
+        v["event"] == "fireball" && v["on"] == false
+    });
+
+    // G, then drag a tumbler that is in view.
+    s.xdotool(&["key", "g"]);
+    let grab = s.expect("grab mode", |v| {
+        v["event"] == "grab_mode" && v["on"] == true
+    });
+    let on_screen: Vec<(f64, f64)> = grab["tumblers_on_screen"]
+        .as_array()
+        .expect("tumbler positions")
+        .iter()
+        .map(|p| (p[0].as_f64().unwrap_or(-1.0), p[1].as_f64().unwrap_or(-1.0)))
+        .collect();
+    let (x, y) = on_screen
+        .iter()
+        .copied()
+        .find(|&(x, y)| (30.0..450.0).contains(&x) && (30.0..240.0).contains(&y))
+        .unwrap_or_else(|| panic!("no tumbler in view: {on_screen:?}"));
+    let (x, y) = (x.round() as i64, y.round() as i64);
+    s.xdotool(&["mousemove", "--window", &w, &x.to_string(), &y.to_string()]);
+    s.settle();
+    s.xdotool(&["mousedown", "1"]);
+    let grabbed = s.expect("a tumbler to be grabbed", |v| v["event"] == "grabbed");
+    for k in 1..=6 {
+        s.xdotool(&[
+            "mousemove",
+            "--window",
+            &w,
+            &(x + 12 * k).to_string(),
+            &y.to_string(),
+        ]);
+        std::thread::sleep(Duration::from_millis(300));
+    }
+    std::thread::sleep(Duration::from_millis(1500));
+    s.xdotool(&["mouseup", "1"]);
+    let released = s.expect("the tumbler to be let go", |v| v["event"] == "released");
+    let (a, b) = (&grabbed["at"], &released["at"]);
+    let dx = b[0].as_f64().unwrap_or(0.0) - a[0].as_f64().unwrap_or(0.0);
+    let dz = b[1].as_f64().unwrap_or(0.0) - a[1].as_f64().unwrap_or(0.0);
+    assert!(
+        (dx * dx + dz * dz).sqrt() > 0.05,
+        "the dragged tumbler did not move: {a} -> {b}"
+    );
+    s.xdotool(&["key", "g"]);
+    s.expect("grab mode off", |v| {
+        v["event"] == "grab_mode" && v["on"] == false
+    });
+
+    // I: the balls start again.
+    s.xdotool(&["key", "i"]);
+    s.expect("the balls to re-initialise", |v| v["event"] == "reset");
+
+    // F12: a PNG of the window's size appears where it says.
+    s.xdotool(&["key", "F12"]);
+    let shot = s.expect("a screenshot", |v| v["event"] == "screenshot");
+    let path = PathBuf::from(shot["path"].as_str().expect("path"));
+    assert!(path.starts_with(&shots), "{}", path.display());
+    let image = image::open(&path)
+        .expect("the screenshot is a PNG")
+        .to_rgba8();
+    assert_eq!(image.dimensions(), (480, 270));
+    let lum: Vec<u32> = image
+        .pixels()
+        .map(|p| p.0[0] as u32 + p.0[1] as u32 + p.0[2] as u32)
+        .collect();
+    assert!(
+        lum.iter().max() > lum.iter().min().map(|m| m + 200).as_ref(),
+        "the screenshot is blank"
+    );
+
+    // Escape releases the mouse, a second Escape quits.
+    s.xdotool(&["key", "Escape"]);
+    s.expect("the mouse released", |v| {
+        v["event"] == "mouse" && v["captured"] == false
+    });
+    s.xdotool(&["key", "Escape"]);
+    let mut app = app;
+    let deadline = Instant::now() + Duration::from_secs(30);
+    loop {
+        if let Some(status) = app.0.try_wait().expect("wait") {
+            assert!(status.success(), "rolypoly exited with {status}");
+            break;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "rolypoly did not quit on the second Escape"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
