@@ -33,5 +33,5 @@ pub use events::{Event, EventKind};
 pub use fireball::Fireball;
 pub use rng::Rng;
 pub use room::{Room, Surface};
-pub use tumbler::{Grip, Tumbler, TumblerShape};
+pub use tumbler::{Grip, Tumbler, TumblerShape, axis_extent};
 pub use world::{BuildError, Energy, Pick, World};

@@ -63,14 +63,7 @@ impl TumblerShape {
                 .iter()
                 .map(|s| s.mass * (s.height - com_y).powi(2))
                 .sum::<f64>();
-        let lo = spheres
-            .iter()
-            .map(|s| s.height - s.radius)
-            .fold(f64::INFINITY, f64::min);
-        let hi = spheres
-            .iter()
-            .map(|s| s.height + s.radius)
-            .fold(f64::NEG_INFINITY, f64::max);
+        let (lo, hi) = axis_extent(spheres);
         let bound_height = 0.5 * (lo + hi);
         let bound_radius = spheres
             .iter()
@@ -100,6 +93,20 @@ impl TumblerShape {
         let (r, a) = (self.bottom_radius, self.com_offset);
         (gravity * a / (k * k + (r - a) * (r - a))).sqrt()
     }
+}
+
+/// The lowest and highest points of a compound of spheres on its axis
+/// (body frame heights).
+pub fn axis_extent(spheres: &[SphereSpec]) -> (f64, f64) {
+    let lo = spheres
+        .iter()
+        .map(|s| s.height - s.radius)
+        .fold(f64::INFINITY, f64::min);
+    let hi = spheres
+        .iter()
+        .map(|s| s.height + s.radius)
+        .fold(f64::NEG_INFINITY, f64::max);
+    (lo, hi)
 }
 
 /// How the round bottom meets the floor during a step.

@@ -602,14 +602,8 @@ impl World {
         }
 
         // Approach speeds before anything moves: what restitution acts on.
-        let bodies = Bodies {
-            balls: &mut self.balls,
-            tumblers: &mut self.tumblers,
-            shape: &self.shape,
-            contact_inv: &self.contact_inv,
-            floor_friction: self.config.tumblers.floor_friction,
-        };
-        for c in self.contacts.iter_mut() {
+        let (bodies, contacts, _, _) = self.solver_parts();
+        for c in contacts.iter_mut() {
             c.approach = bodies.normal_velocity(c);
         }
     }

@@ -33,14 +33,7 @@ fn disc(x: f64, y: f64, r: f64) -> f64 {
 
 /// Paints the tumbler made of `spheres` (sphere 0 is the round bottom).
 pub fn tumbler_paint(spheres: &[SphereSpec]) -> RgbaImage {
-    let lo = spheres
-        .iter()
-        .map(|s| s.height - s.radius)
-        .fold(f64::INFINITY, f64::min);
-    let hi = spheres
-        .iter()
-        .map(|s| s.height + s.radius)
-        .fold(f64::NEG_INFINITY, f64::max);
+    let (lo, hi) = rolypoly_physics::axis_extent(spheres);
     let bottom = spheres[0];
     // The head: the highest sphere that is not a small knot on top.
     let head = spheres

@@ -15,19 +15,6 @@ use std::fmt::Write as _;
 const RINGS: u32 = 96;
 const SEGMENTS: u32 = 64;
 
-/// The lowest and highest point of the union of spheres on the axis.
-fn extent(spheres: &[SphereSpec]) -> (f64, f64) {
-    let lo = spheres
-        .iter()
-        .map(|s| s.height - s.radius)
-        .fold(f64::INFINITY, f64::min);
-    let hi = spheres
-        .iter()
-        .map(|s| s.height + s.radius)
-        .fold(f64::NEG_INFINITY, f64::max);
-    (lo, hi)
-}
-
 /// The widest sphere at height `y`: its index and radius of the cut there.
 fn outline(spheres: &[SphereSpec], y: f64) -> (usize, f64) {
     spheres
@@ -46,7 +33,7 @@ fn outline(spheres: &[SphereSpec], y: f64) -> (usize, f64) {
 
 /// Builds the surface of revolution of the spheres' union.
 pub fn tumbler_mesh(spheres: &[SphereSpec]) -> MeshData {
-    let (lo, hi) = extent(spheres);
+    let (lo, hi) = rolypoly_physics::axis_extent(spheres);
     let mut mesh = MeshData::default();
     for r in 0..=RINGS {
         // Top (v = 0) to bottom (v = 1); rings cluster near the poles.

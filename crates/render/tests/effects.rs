@@ -1,54 +1,15 @@
 //! Golden frames of the fireball and its effects (X1-X4): in flight with
 //! its trail, spreading in a wall it hit, and collapsing a ball it caught.
-//! Tolerance as in `rendering.rs`; `ROLYPOLY_BLESS=1` re-writes the goldens.
+//! Compared as in `common/mod.rs`; `ROLYPOLY_BLESS=1` re-writes the goldens.
 
 use glam::{DVec3, Vec3};
 use image::RgbaImage;
 use rolypoly_fx::{Effects, EffectsConfig};
 use rolypoly_physics::{World, WorldConfig};
 use rolypoly_render::{Camera, RenderSettings, SceneView, Snapshot};
-use std::path::PathBuf;
 
-const SHARE: f64 = 0.005;
-const CHANNEL: u8 = 16;
-
-fn check_golden(name: &str, actual: &RgbaImage) {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/golden");
-    let path = dir.join(format!("{name}.png"));
-    if std::env::var_os("ROLYPOLY_BLESS").is_some() {
-        actual.save(&path).expect("write golden");
-        return;
-    }
-    let golden = image::open(&path)
-        .unwrap_or_else(|e| {
-            panic!(
-                "golden {} missing ({e}); render it with ROLYPOLY_BLESS=1",
-                path.display()
-            )
-        })
-        .to_rgba8();
-    assert_eq!(golden.dimensions(), actual.dimensions());
-    let mut diff = RgbaImage::new(actual.width(), actual.height());
-    let mut off = 0usize;
-    for (x, y, a) in actual.enumerate_pixels() {
-        let d = (0..3)
-            .map(|c| a.0[c].abs_diff(golden.get_pixel(x, y).0[c]))
-            .max()
-            .unwrap_or(0);
-        off += (d > CHANNEL) as usize;
-        let v = d.saturating_mul(4);
-        diff.put_pixel(x, y, image::Rgba([v, v, v, 255]));
-    }
-    let share = off as f64 / (actual.width() * actual.height()) as f64;
-    if share >= SHARE {
-        let _ = actual.save(dir.join(format!("{name}-actual.png")));
-        let _ = diff.save(dir.join(format!("{name}-diff.png")));
-        panic!(
-            "{name}: {:.2}% of pixels differ by more than {CHANNEL}/255; see {name}-actual.png and {name}-diff.png",
-            100.0 * share
-        );
-    }
-}
+mod common;
+use common::check_golden;
 
 /// Runs `world` with its effects for `seconds`, then draws it.
 fn frame(mut world: World, seconds: f64, camera: Camera) -> RgbaImage {
