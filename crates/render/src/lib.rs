@@ -26,4 +26,6 @@ pub use paint::tumbler_paint;
 pub use renderer::{FrameStats, HDR_FORMAT, RenderSettings, Renderer};
 pub use snapshot::Snapshot;
 pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
-pub use view::{BallView, Light, SceneView, TumblerView};
+pub use view::{
+    BallView, Light, LightConfig, ParticleView, SceneView, TumblerView, particle_color,
+};

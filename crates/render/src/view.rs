@@ -6,6 +6,33 @@ use glam::{Mat4, Quat, Vec3};
 use rolypoly_fx::{Effects, FireballLook, ParticleKind};
 use rolypoly_physics::World;
 
+/// The point light's constants (a scene file's `[light]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightConfig {
+    /// Linear RGB colour, each component 0..=1.
+    pub color: [f32; 3],
+    /// Brightness multiplier of the colour.
+    pub intensity: f32,
+    /// Strength of the ambient term (the only light in shadow).
+    pub ambient: f32,
+    /// Radius of the visible bulb (metres).
+    pub bulb_radius: f32,
+    /// How far below the ceiling's centre the light hangs (metres).
+    pub drop: f32,
+}
+
+impl Default for LightConfig {
+    fn default() -> Self {
+        LightConfig {
+            color: [1.0, 0.86, 0.68],
+            intensity: 3.2,
+            ambient: 0.16,
+            bulb_radius: 0.09,
+            drop: 0.25,
+        }
+    }
+}
+
 /// The point light at the centre of the ceiling (S2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
@@ -19,13 +46,14 @@ pub struct Light {
 }
 
 impl Light {
-    /// Warm light, hanging a little below the ceiling's centre.
-    pub fn ceiling_centre(room_size: Vec3) -> Light {
+    /// The light of `config`, hanging below the centre of the ceiling of a
+    /// room of `room_size`.
+    pub fn ceiling_centre(room_size: Vec3, config: &LightConfig) -> Light {
         Light {
-            position: Vec3::new(0.0, room_size.y - 0.25, 0.0),
-            color: Vec3::new(1.0, 0.86, 0.68) * 3.2,
-            ambient: 0.16,
-            bulb_radius: 0.09,
+            position: Vec3::new(0.0, room_size.y - config.drop, 0.0),
+            color: Vec3::from_array(config.color) * config.intensity,
+            ambient: config.ambient,
+            bulb_radius: config.bulb_radius,
         }
     }
 }
@@ -122,7 +150,7 @@ impl SceneView {
         SceneView {
             room_size,
             room_colors: config.room.colors.map(Vec3::from_array),
-            light: Light::ceiling_centre(room_size),
+            light: Light::ceiling_centre(room_size, &LightConfig::default()),
             balls,
             tumblers,
             particles: Vec::new(),
@@ -130,6 +158,12 @@ impl SceneView {
                 .fireball()
                 .map(|f| FireballLook::at(f.position.as_vec3(), f.radius as f32, world.time())),
         }
+    }
+
+    /// Lights the view with `config` instead of the default light.
+    pub fn with_light(mut self, config: &LightConfig) -> SceneView {
+        self.light = Light::ceiling_centre(self.room_size, config);
+        self
     }
 
     /// Adds what the effects show: the particles, the balls caught in a

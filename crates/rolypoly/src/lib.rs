@@ -51,15 +51,20 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
                 screenshot_dir: w.screenshot_dir.clone(),
                 move_speed: w.move_speed,
                 look_speed: w.look_speed.to_radians(),
+                light: scene.light,
             };
             window::run(world, scene.effects, mesh, options)
         }
         Some(Command::Simulate(args)) => {
             simulate_command(&mut world, &scene_name, args, scene_args.seed, dt)
         }
-        Some(Command::Render(args)) => {
-            render::render(&mut world, scene.effects, scene_args.seed, args)
-        }
+        Some(Command::Render(args)) => render::render(
+            &mut world,
+            scene.effects,
+            &scene.light,
+            scene_args.seed,
+            args,
+        ),
         Some(Command::MakeTumblerObj(args)) => render::make_tumbler_obj(world.config(), args),
     }
 }

@@ -7,7 +7,7 @@ use anyhow::Context;
 use glam::Vec3;
 use rolypoly_fx::{Effects, EffectsConfig};
 use rolypoly_physics::{World, WorldConfig};
-use rolypoly_render::{Camera, MeshData, RenderSettings, SceneView, Snapshot};
+use rolypoly_render::{Camera, LightConfig, MeshData, RenderSettings, SceneView, Snapshot};
 
 use crate::cli::{MakeTumblerObjArgs, RenderArgs, steps_for};
 
@@ -16,6 +16,7 @@ use crate::cli::{MakeTumblerObjArgs, RenderArgs, steps_for};
 pub fn render(
     world: &mut World,
     effects: EffectsConfig,
+    light: &LightConfig,
     seed: u64,
     args: &RenderArgs,
 ) -> anyhow::Result<()> {
@@ -42,7 +43,9 @@ pub fn render(
         },
         None => Camera::overview(config.room.size.as_vec3()),
     };
-    let view = SceneView::from_world(world, None).with_effects(&fx, world);
+    let view = SceneView::from_world(world, None)
+        .with_effects(&fx, world)
+        .with_light(light);
     let image = snapshot.capture(&view, &camera)?;
     image
         .save_with_format(&args.out, image::ImageFormat::Png)

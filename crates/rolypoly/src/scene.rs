@@ -1,12 +1,13 @@
 //! Scene files (SPEC S6, A4): the built-in default scene overridden by a
 //! user's TOML file, then range-checked.
 //!
-//! A scene is the physics ([`WorldConfig`]) plus the particle effects
-//! ([`EffectsConfig`], the file's `[effects]`). A file may set any subset of
-//! keys; everything it leaves out keeps the value of [`WorldConfig::default`]
-//! or [`EffectsConfig::default`]. The file is parsed into a partial schema
-//! whose tables all reject unknown keys, so a typo is an error instead of a
-//! silently ignored setting. Every value read from the file keeps its source
+//! A scene is the physics ([`WorldConfig`]), the particle effects
+//! ([`EffectsConfig`], the file's `[effects]`) and the ceiling light
+//! ([`LightConfig`], the file's `[light]`). A file may set any subset of
+//! keys; everything it leaves out keeps the value of [`WorldConfig::default`],
+//! [`EffectsConfig::default`] or [`LightConfig::default`]. The file is parsed
+//! into a partial schema whose tables all reject unknown keys, so a typo is an
+//! error instead of a silently ignored setting. Every value read from the file keeps its source
 //! span, so a range error can point at the line where the value was written.
 
 use std::collections::HashMap;
@@ -17,6 +18,7 @@ use std::path::Path;
 use glam::DVec3;
 use rolypoly_fx::EffectsConfig;
 use rolypoly_physics::{Rgb, SphereSpec, TumblerPlacement, WorldConfig};
+use rolypoly_render::LightConfig;
 use serde::Deserialize;
 use toml::Spanned;
 
@@ -82,11 +84,12 @@ pub enum SceneError {
     },
 }
 
-/// A loaded scene: the physics and the particle effects.
+/// A loaded scene: the physics, the particle effects and the light.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scene {
     pub world: WorldConfig,
     pub effects: EffectsConfig,
+    pub light: LightConfig,
 }
 
 /// Settings given on the command line; they win over the scene file and are
@@ -280,6 +283,7 @@ type Vec3 = [f64; 3];
 struct FileScene {
     gravity: Option<Spanned<f64>>,
     room: Option<FileRoom>,
+    light: Option<FileLight>,
     balls: Option<FileBalls>,
     tumblers: Option<FileTumblers>,
     fireball: Option<FileFireball>,
@@ -307,6 +311,16 @@ struct FileRoomColors {
     right: Option<Spanned<Vec3>>,
     back: Option<Spanned<Vec3>>,
     front: Option<Spanned<Vec3>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileLight {
+    color: Option<Spanned<Vec3>>,
+    intensity: Option<Spanned<f64>>,
+    ambient: Option<Spanned<f64>>,
+    bulb_radius: Option<Spanned<f64>>,
+    drop: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]
@@ -519,6 +533,10 @@ impl Overlay<'_> {
             }
         }
 
+        if let Some(light) = file.light {
+            self.apply_light(light, &mut scene.light);
+        }
+
         if let Some(balls) = file.balls {
             self.set_count(
                 "balls.count",
@@ -688,6 +706,21 @@ impl Overlay<'_> {
         Ok(())
     }
 
+    fn apply_light(&mut self, l: FileLight, c: &mut LightConfig) {
+        self.set("light.color", &mut c.color, l.color, rgb);
+        self.set("light.intensity", &mut c.intensity, l.intensity, |v| {
+            v as f32
+        });
+        self.set("light.ambient", &mut c.ambient, l.ambient, |v| v as f32);
+        self.set(
+            "light.bulb_radius",
+            &mut c.bulb_radius,
+            l.bulb_radius,
+            |v| v as f32,
+        );
+        self.set("light.drop", &mut c.drop, l.drop, |v| v as f32);
+    }
+
     fn apply_effects(&mut self, e: FileEffects, c: &mut EffectsConfig) -> Result<(), SceneError> {
         self.set_count(
             "effects.capacity",
@@ -768,6 +801,10 @@ const MAX_FRICTION: f64 = 5.0;
 const MAX_EFFECT: f64 = 10.0;
 /// Most particles an effect may spawn per second.
 const MAX_RATE: f64 = 100_000.0;
+/// Largest light intensity.
+const MAX_INTENSITY: f64 = 100.0;
+/// Largest radius (metres) of the light's bulb.
+const MAX_BULB_RADIUS: f64 = 1.0;
 
 /// One end of an allowed interval.
 #[derive(Clone, Copy)]
@@ -870,6 +907,13 @@ fn rgb_text(c: Rgb) -> String {
     format!("[{}, {}, {}]", c[0], c[1], c[2])
 }
 
+/// The `f64` with the same shortest decimal form as `v`: 0.09 rather than
+/// 0.09000000357627869, so that messages and bounds derived from `f32` keys
+/// show the numbers as they were written.
+fn widen(v: f32) -> f64 {
+    v.to_string().parse().unwrap_or(f64::from(v))
+}
+
 struct Checker<'a> {
     scene: &'a Scene,
     sources: &'a Sources,
@@ -914,6 +958,11 @@ impl Checker<'_> {
             format!("{bounds} ({why})")
         };
         Err(self.out_of_range(key, v.to_string(), allowed))
+    }
+
+    /// [`Self::real_why`] for an `f32` key.
+    fn real32(&self, key: &str, v: f32, bounds: Bounds, why: &str) -> Result<(), SceneError> {
+        self.real_why(key, widen(v), bounds, why)
     }
 
     fn count(&self, key: &str, v: usize, (lo, hi): (usize, usize)) -> Result<(), SceneError> {
@@ -972,6 +1021,8 @@ impl Checker<'_> {
         for (name, &color) in SURFACE_NAMES.iter().zip(&c.room.colors) {
             self.color(&format!("room.colors.{name}"), color)?;
         }
+
+        self.check_light()?;
 
         let half_min = size.min_element() / 2.0;
         let fits = Bounds::open(half_min);
@@ -1043,6 +1094,33 @@ impl Checker<'_> {
         )?;
 
         self.check_effects()
+    }
+
+    fn check_light(&self) -> Result<(), SceneError> {
+        let l = &self.scene.light;
+        self.color("light.color", l.color)?;
+        self.real32(
+            "light.intensity",
+            l.intensity,
+            Bounds::closed(0.0, MAX_INTENSITY),
+            "",
+        )?;
+        self.real32("light.ambient", l.ambient, Bounds::closed(0.0, 1.0), "")?;
+        let bulb = widen(l.bulb_radius);
+        self.real32(
+            "light.bulb_radius",
+            l.bulb_radius,
+            Bounds::positive(MAX_BULB_RADIUS),
+            "",
+        )?;
+        // The bulb hangs below the centre of the ceiling and must not reach
+        // through the floor.
+        self.real32(
+            "light.drop",
+            l.drop,
+            Bounds::closed(0.0, self.scene.world.room.size.y - bulb),
+            "at most the room's height minus light.bulb_radius",
+        )
     }
 
     fn check_effects(&self) -> Result<(), SceneError> {
@@ -1221,6 +1299,12 @@ mod tests {
             EffectsConfig::default(),
             "scenes/default.toml must spell out EffectsConfig::default() exactly"
         );
+        assert_eq!(
+            parsed.light,
+            LightConfig::default(),
+            "scenes/default.toml must spell out LightConfig::default() exactly"
+        );
+        assert_eq!(parsed, Scene::default());
     }
 
     #[test]
@@ -1269,6 +1353,92 @@ mod tests {
         let mut expected = Scene::default();
         expected.effects.ball_hit.burst_size = 0.25;
         assert_eq!(parsed, expected);
+    }
+
+    #[test]
+    fn one_light_key_changes_only_that_key() {
+        let parsed = parse("[light]\nintensity = 5\n").unwrap();
+        let mut expected = Scene::default();
+        expected.light.intensity = 5.0;
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[light]\ncolor = [0.5, 0.25, 1]\n").unwrap();
+        let mut expected = Scene::default();
+        expected.light.color = [0.5, 0.25, 1.0];
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[light]\ndrop = 0\n").unwrap();
+        let mut expected = Scene::default();
+        expected.light.drop = 0.0;
+        assert_eq!(parsed, expected);
+    }
+
+    #[test]
+    fn light_out_of_range_names_line_key_and_range() {
+        let text = error_text("[light]\nambient = 0.1\nintensity = 150\n");
+        assert_eq!(
+            text,
+            "test.toml:3: light.intensity = 150 is out of range: allowed 0 ..= 100"
+        );
+
+        let text = error_text("[light]\nambient = 1.5\n");
+        assert_eq!(
+            text,
+            "test.toml:2: light.ambient = 1.5 is out of range: allowed 0 ..= 1"
+        );
+
+        let text = error_text("[light]\nbulb_radius = 0\n");
+        assert_eq!(
+            text,
+            "test.toml:2: light.bulb_radius = 0 is out of range: allowed > 0 and <= 1"
+        );
+
+        let text = error_text("[light]\ncolor = [1, 1.2, 1]\n");
+        assert_eq!(
+            text,
+            "test.toml:2: light.color = [1, 1.2, 1] is out of range: \
+             allowed each component 0 ..= 1"
+        );
+
+        let text = error_text("[light]\ndrop = -0.1\n");
+        assert_eq!(
+            text,
+            "test.toml:2: light.drop = -0.1 is out of range: allowed 0 ..= 3.91 \
+             (at most the room's height minus light.bulb_radius)"
+        );
+
+        // The bulb must stay inside the room: drop depends on the room's
+        // height and the bulb's radius.
+        let text = error_text("[light]\nbulb_radius = 0.5\ndrop = 3.6\n");
+        assert_eq!(
+            text,
+            "test.toml:3: light.drop = 3.6 is out of range: allowed 0 ..= 3.5 \
+             (at most the room's height minus light.bulb_radius)"
+        );
+        // A value the file did not give is named as the built-in default.
+        let text = error_text("[room]\nsize = [8, 0.5, 8]\n[light]\nbulb_radius = 0.3\n");
+        assert!(
+            text.starts_with("test.toml: light.drop = 0.25 (built-in default) is out of range"),
+            "{text}"
+        );
+        assert!(text.contains("allowed 0 ..= 0.2 "), "{text}");
+
+        let text = error_text("[light]\nglow = 1\n");
+        assert!(
+            text.starts_with("test.toml:2: unknown key `light.glow`"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn runtime_light_is_checked() {
+        let mut scene = Scene::default();
+        scene.light.intensity = -1.0;
+        let text = validate(&scene).unwrap_err().to_string();
+        assert_eq!(
+            text,
+            "built-in default scene: light.intensity = -1 is out of range: allowed 0 ..= 100"
+        );
     }
 
     #[test]

@@ -365,3 +365,31 @@ fn render_with_the_fireball_draws_its_effects() {
         "the fireball and its trail changed only {changed} pixels"
     );
 }
+
+#[test]
+fn the_scene_files_light_lights_the_frame() {
+    let dim = scene_file("dim.toml", "[light]\nintensity = 0.8\nambient = 0.05\n");
+    let (bright_png, dim_png) = (scratch("bright.png"), scratch("dim.png"));
+    let runs: [(&PathBuf, Option<&PathBuf>); 2] = [(&bright_png, None), (&dim_png, Some(&dim))];
+    for (out, scene) in runs {
+        let out_str = out.to_str().expect("UTF-8 path");
+        let mut args = vec!["render", "--size", "96x54", "--out", out_str];
+        if let Some(scene) = scene {
+            args.extend(["--scene", scene.to_str().expect("UTF-8 path")]);
+        }
+        let output = rolypoly(&args);
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let mean = |p: &PathBuf| {
+        let img = image::open(p).expect("png").to_rgba8();
+        img.pixels()
+            .map(|p| p.0[..3].iter().map(|&c| c as f64).sum::<f64>())
+            .sum::<f64>()
+            / img.pixels().len() as f64
+    };
+    let (bright, dim) = (mean(&bright_png), mean(&dim_png));
+    assert!(
+        dim < 0.7 * bright,
+        "a dimmer light gave {dim:.0} against {bright:.0}"
+    );
+}

@@ -176,7 +176,7 @@ fn a_person_flies_shoots_pauses_grabs_resets_and_screenshots() {
     // Mouse look: move right of the centre; the view turns.
     s.xdotool(&["mousemove", "--window", &w, "240", "135"]);
     s.settle();
-    s.xdotool(&["mousemove", "--window", &w, "300", "135"]);
+    s.xdotool(&["mousemove", "--window", &w, "280", "135"]);
     let turned = s.expect("the camera to turn", |v| v["event"] == "camera");
     assert!(number(&turned, "yaw").abs() > 0.01, "{turned}");
 
@@ -203,7 +203,7 @@ fn a_person_flies_shoots_pauses_grabs_resets_and_screenshots() {
     });
     let frozen_at = number(&paused, "sim_time");
     s.settle();
-    s.xdotool(&["mousemove", "--window", &w, "180", "135"]);
+    s.xdotool(&["mousemove", "--window", &w, "200", "135"]);
     let looked = s.expect("the camera to turn while paused", |v| {
         v["event"] == "camera"
     });

@@ -10,7 +10,8 @@ use glam::{DVec3, Vec2, Vec3};
 use rolypoly_fx::{Effects, EffectsConfig};
 use rolypoly_physics::{Event, World};
 use rolypoly_render::{
-    Camera, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, RenderSettings, Renderer, SceneView,
+    Camera, Gpu, LightConfig, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, RenderSettings,
+    Renderer, SceneView,
 };
 use serde_json::json;
 use winit::application::ApplicationHandler;
@@ -38,6 +39,7 @@ pub struct WindowOptions {
     /// Walking speed (m/s) and mouse-look sensitivity (radians per pixel).
     pub move_speed: f32,
     pub look_speed: f32,
+    pub light: LightConfig,
 }
 
 /// What the mouse does.
@@ -379,10 +381,12 @@ impl App {
             MouseMode::Look => {
                 let delta = at - self.centre();
                 // The first position after capturing says where the pointer
-                // was, not how far it moved.
+                // was, not how far it moved; so does a jump across a good part
+                // of the window (the pointer left and came back).
+                let jump = 0.25 * self.viewport().min_element();
                 if !self.look_settled {
                     self.look_settled = true;
-                } else if delta.length_squared() > 0.0 {
+                } else if delta.length_squared() > 0.0 && delta.length() < jump {
                     self.camera.turn(delta, self.options.look_speed);
                 }
                 if delta.length_squared() > 0.0 {
@@ -525,7 +529,8 @@ impl App {
         }
 
         let view = SceneView::from_world(&self.world, self.world.grabbed())
-            .with_effects(&self.fx, &self.world);
+            .with_effects(&self.fx, &self.world)
+            .with_light(&self.options.light);
         let camera = self.camera.camera();
         self.hud_state.frame(
             elapsed,
@@ -600,7 +605,8 @@ impl App {
         );
         let target = OffscreenTarget::new(&r.gpu, w, h)?;
         let view = SceneView::from_world(&self.world, self.world.grabbed())
-            .with_effects(&self.fx, &self.world);
+            .with_effects(&self.fx, &self.world)
+            .with_light(&self.options.light);
         target.render(&r.gpu, &mut renderer, &view, &self.camera.camera())?;
         let image = target.read(&r.gpu)?;
         self.screenshots += 1;
