@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{build, empty_room, with_balls};
+use common::{empty_room, with_balls};
 use glam::DVec3;
 use rolypoly_physics::{EventKind, World};
 
@@ -212,5 +212,47 @@ fn ball_takes_the_colour_of_what_it_hits() {
         }
     }
     assert_eq!(w.balls().tints()[0], Tint::Surface(Surface::Left));
-    let _ = build; // shared helper
+}
+
+#[test]
+fn a_ball_hitting_a_tumbler_takes_its_colour_and_rocks_it() {
+    use rolypoly_physics::{EventKind, Tint};
+    let mut cfg = empty_room();
+    cfg.tumblers.placements = vec![common::tumbler_at(0.0, 0.0, DVec3::X, 0.0)];
+    let mut w = with_balls(cfg, 1);
+    // Thrown level at the tumbler's head, from the side.
+    let head = w.tumblers()[0].sphere_center(w.tumbler_shape(), 4);
+    w.balls_mut().set(
+        0,
+        head + DVec3::new(-1.5, 0.0, 0.0),
+        DVec3::new(6.0, 0.0, 0.0),
+    );
+    let mut hit = false;
+    for _ in 0..120 {
+        w.step();
+        if w.drain_events().any(|e| {
+            matches!(
+                e.kind,
+                EventKind::BallTumbler {
+                    ball: 0,
+                    tumbler: 0,
+                    ..
+                }
+            )
+        }) {
+            hit = true;
+            break;
+        }
+    }
+    assert!(hit, "the ball never reached the tumbler");
+    assert_eq!(w.balls().tints()[0], Tint::Tumbler(0));
+    // The impulse at the contact point turns it about its floor contact.
+    assert!(
+        w.tumblers()[0].angular_velocity().length() > 0.01,
+        "the tumbler did not rock"
+    );
+    assert!(
+        w.balls().velocities()[0].x < 0.0,
+        "the ball did not bounce back"
+    );
 }
