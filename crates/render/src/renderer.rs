@@ -405,33 +405,14 @@ impl Renderer {
             cache: None,
         });
 
-        let tonemap_pipeline_layout =
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("tonemap"),
-                bind_group_layouts: &[Some(&tonemap_layout)],
-                immediate_size: 0,
-            });
-        let tonemap_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("tonemap"),
-            layout: Some(&tonemap_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &tonemap_shader,
-                entry_point: Some("vs_fullscreen"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &tonemap_shader,
-                entry_point: Some("fs_tonemap"),
-                compilation_options: Default::default(),
-                targets: &[Some(output_format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let tonemap_pipeline = screen_pipeline(
+            device,
+            "tonemap",
+            &tonemap_layout,
+            &tonemap_shader,
+            ("vs_fullscreen", "fs_tonemap"),
+            output_format,
+        );
 
         let cursor_shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("cursor.wgsl"),
@@ -455,33 +436,14 @@ impl Renderer {
                 resource: cursor_buffer.as_entire_binding(),
             }],
         });
-        let cursor_pipeline_layout =
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("cursor"),
-                bind_group_layouts: &[Some(&cursor_layout)],
-                immediate_size: 0,
-            });
-        let cursor_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("cursor"),
-            layout: Some(&cursor_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &cursor_shader,
-                entry_point: Some("vs_cursor"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &cursor_shader,
-                entry_point: Some("fs_cursor"),
-                compilation_options: Default::default(),
-                targets: &[Some(output_format.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let cursor_pipeline = screen_pipeline(
+            device,
+            "cursor",
+            &cursor_layout,
+            &cursor_shader,
+            ("vs_cursor", "fs_cursor"),
+            output_format,
+        );
 
         let instance_capacity = 256;
         Renderer {
@@ -915,6 +877,44 @@ fn draw(pass: &mut wgpu::RenderPass, mesh: &GpuMesh, instances: std::ops::Range<
     pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
     pass.draw_indexed(0..mesh.index_count, 0, instances);
     1
+}
+
+/// A pipeline that draws straight into the output, in screen space: no
+/// vertex buffers, no depth, one bind group.
+fn screen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    shader: &wgpu::ShaderModule,
+    (vertex, fragment): (&str, &str),
+    output_format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: shader,
+            entry_point: Some(vertex),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: shader,
+            entry_point: Some(fragment),
+            compilation_options: Default::default(),
+            targets: &[Some(output_format.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
 }
 
 fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
