@@ -100,86 +100,103 @@ impl Grid {
         self.cell_start = cursor;
     }
 
-    /// Calls `f(i, j)` once for every unordered pair of live balls in the same
-    /// or neighbouring cells (so every pair closer than one cell size is seen).
-    pub fn for_each_pair(&self, mut f: impl FnMut(usize, usize)) {
+    /// The live balls in cell order: slot `k` of the sorted order holds ball
+    /// `order()[k]`. Cells are contiguous runs of slots.
+    pub fn order(&self) -> &[u32] {
+        &self.sorted
+    }
+
+    fn slots(&self, cell: usize) -> std::ops::Range<usize> {
+        self.cell_start[cell] as usize..self.cell_start[cell + 1] as usize
+    }
+
+    /// Number of cell layers along z.
+    pub fn layer_count(&self) -> usize {
+        self.dims[2]
+    }
+
+    /// The first slot of every layer along z, then one past the last slot:
+    /// layer `z` holds slots `layer_slots()[z]..layer_slots()[z + 1]`.
+    pub fn layer_slots(&self, into: &mut Vec<usize>) {
+        into.clear();
+        let per_layer = self.dims[0] * self.dims[1];
+        into.extend((0..=self.dims[2]).map(|z| self.cell_start[z * per_layer] as usize));
+    }
+
+    /// Calls `f(k, l)` once for every unordered pair of slots (see
+    /// [`Grid::order`]) with `k` in a cell of layer `z` whose `positions`
+    /// (in slot order) are closer than `reach`, which must not exceed the
+    /// cell size. `l` lies in layer `z` or `z + 1`; `k < l` within a cell.
+    /// Over all layers, every close pair is seen once.
+    pub fn for_each_close_pair_in_layer(
+        &self,
+        positions: &[DVec3],
+        reach: f64,
+        cz: usize,
+        mut f: impl FnMut(usize, usize),
+    ) {
+        let reach2 = reach * reach;
         let [nx, ny, nz] = self.dims;
-        for cz in 0..nz {
-            for cy in 0..ny {
-                for cx in 0..nx {
-                    let c = self.index([cx, cy, cz]);
-                    let (s, e) = (self.cell_start[c] as usize, self.cell_start[c + 1] as usize);
-                    if s == e {
+        let mut close = |own: std::ops::Range<usize>, other: std::ops::Range<usize>| {
+            for k in own {
+                let p = positions[k];
+                for (l, q) in positions[other.clone()].iter().enumerate() {
+                    if (*q - p).length_squared() < reach2 {
+                        f(k, other.start + l);
+                    }
+                }
+            }
+        };
+        for cy in 0..ny {
+            let row = self.index([0, cy, cz]);
+            for cx in 0..nx {
+                let own = self.slots(row + cx);
+                if own.is_empty() {
+                    continue;
+                }
+                // Within the cell, and with the next cell along x.
+                for k in own.clone() {
+                    close(k..k + 1, k + 1..own.end);
+                }
+                if cx + 1 < nx {
+                    close(own.clone(), self.slots(row + cx + 1));
+                }
+                // The four rows ahead in (y, z), three cells each: a row's
+                // cells are contiguous slots, so each row is one range.
+                let (x0, x1) = (cx.saturating_sub(1), (cx + 1).min(nx - 1));
+                for (dy, dz) in FORWARD_ROWS {
+                    let (y, z) = (cy as isize + dy, cz + dz);
+                    if y < 0 || y >= ny as isize || z >= nz {
                         continue;
                     }
-                    let own = &self.sorted[s..e];
-                    // Pairs within the cell.
-                    for (k, &i) in own.iter().enumerate() {
-                        for &j in &own[k + 1..] {
-                            f(i as usize, j as usize);
-                        }
-                    }
-                    // Half of the 26 neighbours, so that each pair is seen once.
-                    for &(dx, dy, dz) in &FORWARD_NEIGHBOURS {
-                        let (x, y, z) = (cx as isize + dx, cy as isize + dy, cz as isize + dz);
-                        if x < 0
-                            || y < 0
-                            || z < 0
-                            || x >= nx as isize
-                            || y >= ny as isize
-                            || z >= nz as isize
-                        {
-                            continue;
-                        }
-                        let n = self.index([x as usize, y as usize, z as usize]);
-                        let other = &self.sorted
-                            [self.cell_start[n] as usize..self.cell_start[n + 1] as usize];
-                        for &i in own {
-                            for &j in other {
-                                f(i as usize, j as usize);
-                            }
-                        }
-                    }
+                    let other_row = self.index([0, y as usize, z]);
+                    let start = self.cell_start[other_row + x0] as usize;
+                    let end = self.cell_start[other_row + x1 + 1] as usize;
+                    close(own.clone(), start..end);
                 }
             }
         }
     }
 
-    /// Calls `f(i)` for every live ball whose cell touches the box `lo..hi`.
+    /// Calls `f(k)` for every slot (see [`Grid::order`]) whose cell touches
+    /// the box `lo..hi`.
     pub fn for_each_in_box(&self, lo: DVec3, hi: DVec3, mut f: impl FnMut(usize)) {
         let a = self.coords(lo);
         let b = self.coords(hi);
         for z in a[2]..=b[2] {
             for y in a[1]..=b[1] {
                 for x in a[0]..=b[0] {
-                    let c = self.index([x, y, z]);
-                    for &i in
-                        &self.sorted[self.cell_start[c] as usize..self.cell_start[c + 1] as usize]
-                    {
-                        f(i as usize);
-                    }
+                    self.slots(self.index([x, y, z])).for_each(&mut f);
                 }
             }
         }
     }
 }
 
-/// The 13 neighbour offsets that are "after" a cell in scan order.
-const FORWARD_NEIGHBOURS: [(isize, isize, isize); 13] = [
-    (1, 0, 0),
-    (-1, 1, 0),
-    (0, 1, 0),
-    (1, 1, 0),
-    (-1, -1, 1),
-    (0, -1, 1),
-    (1, -1, 1),
-    (-1, 0, 1),
-    (0, 0, 1),
-    (1, 0, 1),
-    (-1, 1, 1),
-    (0, 1, 1),
-    (1, 1, 1),
-];
+/// The rows of cells (dy, dz) that come after a cell's own row in scan
+/// order and touch it: with the next cell in its own row, these hold the 13
+/// of its 26 neighbours that see each pair once.
+const FORWARD_ROWS: [(isize, usize); 4] = [(1, 0), (-1, 1), (0, 1), (1, 1)];
 
 #[cfg(test)]
 mod tests {
@@ -207,11 +224,14 @@ mod tests {
         let mut grid = Grid::new(min, max, reach);
         grid.rebuild(&pos, &alive);
         let mut found = Vec::new();
-        grid.for_each_pair(|i, j| {
-            if pos[i].distance(pos[j]) < reach {
+        let order = grid.order();
+        let sorted: Vec<DVec3> = order.iter().map(|&i| pos[i as usize]).collect();
+        for z in 0..grid.layer_count() {
+            grid.for_each_close_pair_in_layer(&sorted, reach, z, |k, l| {
+                let (i, j) = (order[k] as usize, order[l] as usize);
                 found.push((i.min(j), i.max(j)));
-            }
-        });
+            });
+        }
         let mut brute = Vec::new();
         for i in 0..n {
             for j in i + 1..n {

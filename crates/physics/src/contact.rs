@@ -91,6 +91,221 @@ impl Contact {
     }
 }
 
+/// A contact between two balls: most contacts in a crowded room, so it is
+/// kept small and solved without asking which kind of body it touches.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Pair {
+    pub i: u32,
+    pub j: u32,
+    /// Unit normal from `j` towards `i`.
+    pub normal: DVec3,
+    /// Distance between the surfaces at the start of the step (negative: overlap).
+    pub gap: f64,
+    /// Relative normal velocity before the step (negative: approaching).
+    pub approach: f64,
+    /// How much gravity's half step changed the relative normal velocity.
+    pub kick: f64,
+    /// Effective mass along the normal.
+    pub mass: f64,
+    pub impulse: f64,
+    /// Normal impulse of the predict stage (> 0: the pair pushed).
+    pub pushed: f64,
+    /// Whether the project stage bounces this pair.
+    pub bounce: bool,
+}
+
+impl Pair {
+    pub fn new(i: usize, j: usize, normal: DVec3, gap: f64) -> Pair {
+        Pair {
+            i: i as u32,
+            j: j as u32,
+            normal,
+            gap,
+            approach: 0.0,
+            kick: 0.0,
+            mass: 0.0,
+            impulse: 0.0,
+            pushed: 0.0,
+            bounce: false,
+        }
+    }
+
+    /// Relative normal velocity (negative: approaching).
+    pub fn normal_velocity(&self, balls: &Balls) -> f64 {
+        (balls.velocity[self.i as usize] - balls.velocity[self.j as usize]).dot(self.normal)
+    }
+
+    fn prepare(&mut self, balls: &Balls) {
+        let w = balls.inv_mass[self.i as usize] + balls.inv_mass[self.j as usize];
+        self.mass = if w > 0.0 { 1.0 / w } else { 0.0 };
+    }
+
+    /// One Gauss-Seidel update, as [`Bodies::solve_normal`] for two balls.
+    /// `velocity` holds the slots from `first` on; `inv_mass` all of them.
+    #[inline]
+    fn solve(&mut self, velocity: &mut [DVec3], first: usize, inv_mass: &[f64], target: f64) {
+        let (i, j) = (self.i as usize, self.j as usize);
+        let (vi, vj) = (i - first, j - first);
+        let vn = (velocity[vi] - velocity[vj]).dot(self.normal);
+        let total = (self.impulse + self.mass * (target - vn)).max(0.0);
+        let delta = total - self.impulse;
+        if delta != 0.0 {
+            self.impulse = total;
+            velocity[vi] += self.normal * (delta * inv_mass[i]);
+            velocity[vj] -= self.normal * (delta * inv_mass[j]);
+        }
+    }
+}
+
+/// Below this many ball pairs a stage runs on one thread: handing work to
+/// other threads costs more than it saves. The result is the same either way.
+const PARALLEL_PAIRS: usize = 4096;
+
+/// One Gauss-Seidel sweep over every band of pairs, `solve(pair, velocity,
+/// first)` for each, in an order fixed by the bands alone.
+///
+/// Band `z` moves only the balls of grid layers `z` and `z + 1`, so bands two
+/// apart share no ball: the even bands are swept side by side, then the odd
+/// ones. Each band's own pairs are solved in order, so the result is
+/// bit-identical on any number of threads.
+fn sweep_bands<F>(bands: &mut [Vec<Pair>], layers: &[usize], velocity: &mut [DVec3], solve: &F)
+where
+    F: Fn(&mut Pair, &mut [DVec3], usize) + Sync,
+{
+    let parallel = bands.iter().map(Vec::len).sum::<usize>() >= PARALLEL_PAIRS;
+    for parity in 0..2 {
+        if parity >= bands.len() {
+            break;
+        }
+        let count = (bands.len() - parity).div_ceil(2);
+        let first = layers[parity];
+        let window = &mut velocity[first..];
+        sweep_alternate(
+            &mut bands[parity..],
+            &layers[parity..],
+            window,
+            count,
+            parallel,
+            solve,
+        );
+    }
+}
+
+/// Sweeps `count` bands: `bands[0]`, `bands[2]`, ..., whose balls start at
+/// slot `layers[0]` (the first slot of `velocity`), splitting the work in
+/// halves across threads.
+fn sweep_alternate<F>(
+    bands: &mut [Vec<Pair>],
+    layers: &[usize],
+    velocity: &mut [DVec3],
+    count: usize,
+    parallel: bool,
+    solve: &F,
+) where
+    F: Fn(&mut Pair, &mut [DVec3], usize) + Sync,
+{
+    if count >= 2 && parallel {
+        let half = count / 2;
+        let split = 2 * half;
+        let (left_bands, right_bands) = bands.split_at_mut(split);
+        let (left_v, right_v) = velocity.split_at_mut(layers[split] - layers[0]);
+        rayon::join(
+            || sweep_alternate(left_bands, layers, left_v, half, parallel, solve),
+            || {
+                let right_layers = &layers[split..];
+                sweep_alternate(
+                    right_bands,
+                    right_layers,
+                    right_v,
+                    count - half,
+                    parallel,
+                    solve,
+                )
+            },
+        );
+        return;
+    }
+    for k in 0..count {
+        for p in bands[2 * k].iter_mut() {
+            solve(p, velocity, layers[0]);
+        }
+    }
+}
+
+/// All contacts of a step: ball pairs in bands, then every other kind.
+///
+/// Band `z` holds the pairs found from the cells of grid layer `z` (see
+/// [`crate::broadphase::Grid::layer_slots`]): they join balls of layers `z`
+/// and `z + 1`, the slots `layers[z]..layers[z + 2]`. The crowd numbers the
+/// contacts band after band, then `others`.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Contacts {
+    pub bands: Vec<Vec<Pair>>,
+    /// First slot of each grid layer, and one past the last slot.
+    pub layers: Vec<usize>,
+    /// Number of the first pair of each band, and the pair count.
+    band_start: Vec<usize>,
+    pub others: Vec<Contact>,
+}
+
+impl Contacts {
+    /// Ready for `layers` grid layers: every band emptied, storage kept.
+    pub fn reset(&mut self, layers: usize) {
+        self.bands.resize_with(layers, Vec::new);
+        self.bands.iter_mut().for_each(Vec::clear);
+        self.others.clear();
+    }
+
+    /// Numbers the pairs once the bands are filled.
+    pub fn number_pairs(&mut self) {
+        self.band_start.clear();
+        let mut total = 0;
+        for band in &self.bands {
+            self.band_start.push(total);
+            total += band.len();
+        }
+        self.band_start.push(total);
+    }
+
+    pub fn pair_count(&self) -> usize {
+        self.band_start.last().copied().unwrap_or(0)
+    }
+
+    pub fn pairs(&self) -> impl Iterator<Item = &Pair> {
+        self.bands.iter().flatten()
+    }
+
+    fn pairs_mut(&mut self) -> impl Iterator<Item = &mut Pair> {
+        self.bands.iter_mut().flatten()
+    }
+
+    fn pair(&self, index: usize) -> &Pair {
+        let band = self.band_start.partition_point(|&start| start <= index) - 1;
+        &self.bands[band][index - self.band_start[band]]
+    }
+
+    fn normal(&self, index: usize) -> DVec3 {
+        let pairs = self.pair_count();
+        if index < pairs {
+            self.pair(index).normal
+        } else {
+            self.others[index - pairs].normal
+        }
+    }
+
+    /// One sweep of `solve` over every pair (see [`sweep_bands`]).
+    fn sweep<F>(&mut self, balls: &mut Balls, solve: F)
+    where
+        F: Fn(&mut Pair, &mut [DVec3], usize, &[f64]) + Sync,
+    {
+        let inv_mass = &balls.inv_mass;
+        let solve = |p: &mut Pair, velocity: &mut [DVec3], first: usize| {
+            solve(p, velocity, first, inv_mass)
+        };
+        sweep_bands(&mut self.bands, &self.layers, &mut balls.velocity, &solve);
+    }
+}
+
 impl Contact {
     fn involves_tumbler(&self) -> bool {
         matches!(self.a, BodyRef::Tumbler(..)) || matches!(self.b, BodyRef::Tumbler(..))
@@ -223,16 +438,18 @@ impl Crowd {
         self.tumbler_count.resize(tumblers, 0);
     }
 
+    fn add_ball(&mut self, index: usize, i: usize) {
+        let n = self.ball_count[i] as usize;
+        if n < Crowd::PER_BALL {
+            self.ball_contacts[i][n] = index as u32;
+        }
+        self.ball_count[i] = self.ball_count[i].saturating_add(1);
+    }
+
     fn add(&mut self, index: usize, c: &Contact) {
         for body in [c.a, c.b] {
             match body {
-                BodyRef::Ball(i) => {
-                    let n = self.ball_count[i] as usize;
-                    if n < Crowd::PER_BALL {
-                        self.ball_contacts[i][n] = index as u32;
-                    }
-                    self.ball_count[i] = self.ball_count[i].saturating_add(1);
-                }
+                BodyRef::Ball(i) => self.add_ball(index, i),
                 BodyRef::Tumbler(t, _) => {
                     self.tumbler_count[t] = self.tumbler_count[t].saturating_add(1)
                 }
@@ -241,18 +458,25 @@ impl Crowd {
         }
     }
 
+    /// Whether contact `index`, along `normal`, is the only one coupled to ball `i`.
+    fn lone_on_ball(&self, index: usize, normal: DVec3, i: usize, contacts: &Contacts) -> bool {
+        let n = self.ball_count[i] as usize;
+        n <= Crowd::PER_BALL
+            && self.ball_contacts[i][..n].iter().all(|&k| {
+                k as usize == index || contacts.normal(k as usize).dot(normal).abs() < 1e-9
+            })
+    }
+
+    fn lone_pair(&self, index: usize, p: &Pair, contacts: &Contacts) -> bool {
+        self.lone_on_ball(index, p.normal, p.i as usize, contacts)
+            && self.lone_on_ball(index, p.normal, p.j as usize, contacts)
+    }
+
     /// Whether contact `index` is the only one coupled to its bodies.
-    fn lone(&self, index: usize, contacts: &[Contact]) -> bool {
-        let c = &contacts[index];
+    fn lone(&self, index: usize, contacts: &Contacts) -> bool {
+        let c = &contacts.others[index - contacts.pair_count()];
         [c.a, c.b].into_iter().all(|body| match body {
-            BodyRef::Ball(i) => {
-                let n = self.ball_count[i] as usize;
-                n <= Crowd::PER_BALL
-                    && self.ball_contacts[i][..n].iter().all(|&k| {
-                        k as usize == index
-                            || contacts[k as usize].normal.dot(c.normal).abs() < 1e-9
-                    })
-            }
+            BodyRef::Ball(i) => self.lone_on_ball(index, c.normal, i, contacts),
             BodyRef::Tumbler(t, _) => self.tumbler_count[t] == 1,
             BodyRef::Wall(_) => true,
         })
@@ -267,33 +491,49 @@ impl Crowd {
 /// energy.
 pub(crate) fn solve_predict(
     bodies: &mut Bodies,
-    contacts: &mut [Contact],
+    contacts: &mut Contacts,
     crowd: &mut Crowd,
     iterations: usize,
     dt: f64,
     bounce_threshold: f64,
 ) {
     crowd.reset(bodies.balls.len(), bodies.tumblers.len());
-    for (index, c) in contacts.iter_mut().enumerate() {
+    let touching =
+        |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
+    for (index, p) in contacts.pairs_mut().enumerate() {
+        p.prepare(bodies.balls);
+        p.impulse = 0.0;
+        p.kick = p.normal_velocity(bodies.balls) - p.approach;
+        if touching(p.gap, p.approach, p.kick) {
+            crowd.add_ball(index, p.i as usize);
+            crowd.add_ball(index, p.j as usize);
+        }
+    }
+    let first_other = contacts.pair_count();
+    for (k, c) in contacts.others.iter_mut().enumerate() {
         bodies.prepare(c);
         c.impulse = 0.0;
         c.friction_impulse = [0.0; 2];
         // Gravity's half step, which the contact's two sides may not share.
         c.kick = bodies.normal_velocity(c) - c.approach;
-        if c.gap + (c.approach + c.kick).min(0.0) * dt <= TOUCHING {
-            crowd.add(index, c);
+        if touching(c.gap, c.approach, c.kick) {
+            crowd.add(first_other + k, c);
         }
     }
-    for index in 0..contacts.len() {
-        let c = &contacts[index];
+    for k in 0..contacts.others.len() {
+        let c = &contacts.others[k];
         let bounce = c.involves_tumbler()
             && c.approach < -bounce_threshold
             && c.gap + c.approach * dt <= 0.0
-            && crowd.lone(index, contacts);
-        contacts[index].bounce = bounce;
+            && crowd.lone(first_other + k, contacts);
+        contacts.others[k].bounce = bounce;
     }
     for _ in 0..iterations {
-        for c in contacts.iter_mut() {
+        contacts.sweep(bodies.balls, |p, velocity, first, inv_mass| {
+            let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
+            p.solve(velocity, first, inv_mass, target);
+        });
+        for c in contacts.others.iter_mut() {
             let target = if c.bounce {
                 c.kick - c.restitution * c.approach
             } else if c.gap > 0.0 {
@@ -307,7 +547,10 @@ pub(crate) fn solve_predict(
             }
         }
     }
-    for c in contacts.iter_mut() {
+    for p in contacts.pairs_mut() {
+        p.pushed = p.impulse;
+    }
+    for c in contacts.others.iter_mut() {
         c.pushed = c.impulse;
     }
 }
@@ -321,37 +564,74 @@ pub(crate) fn solve_predict(
 /// already: `hit_wall` marks those, and their contacts only stop.
 pub(crate) fn solve_project(
     bodies: &mut Bodies,
-    contacts: &mut [Contact],
+    contacts: &mut Contacts,
     crowd: &mut Crowd,
     iterations: usize,
     bounce_threshold: f64,
+    ball_restitution: f64,
     hit_wall: &[bool],
 ) {
     crowd.reset(bodies.balls.len(), bodies.tumblers.len());
-    for (index, c) in contacts.iter().enumerate() {
+    for (index, p) in contacts.pairs().enumerate() {
+        if p.pushed > 0.0 {
+            crowd.add_ball(index, p.i as usize);
+            crowd.add_ball(index, p.j as usize);
+        }
+    }
+    let first_other = contacts.pair_count();
+    for (k, c) in contacts.others.iter().enumerate() {
         if c.pushed > 0.0 {
-            crowd.add(index, c);
+            crowd.add(first_other + k, c);
         }
     }
     let moved_off_wall = |b: BodyRef| matches!(b, BodyRef::Ball(i) if hit_wall[i]);
-    for index in 0..contacts.len() {
-        let c = &contacts[index];
+    let mut index = 0;
+    for band in 0..contacts.bands.len() {
+        for k in 0..contacts.bands[band].len() {
+            let p = &contacts.bands[band][k];
+            let bounce = p.pushed > 0.0
+                && p.approach < -bounce_threshold
+                && !hit_wall[p.i as usize]
+                && !hit_wall[p.j as usize]
+                && crowd.lone_pair(index, p, contacts);
+            contacts.bands[band][k].bounce = bounce;
+            index += 1;
+        }
+    }
+    for k in 0..contacts.others.len() {
+        let c = &contacts.others[k];
         let bounce = c.pushed > 0.0
             && c.approach < -bounce_threshold
             && !c.involves_tumbler()
             && !moved_off_wall(c.a)
             && !moved_off_wall(c.b)
-            && crowd.lone(index, contacts);
-        contacts[index].bounce = bounce;
+            && crowd.lone(first_other + k, contacts);
+        contacts.others[k].bounce = bounce;
     }
-    for c in contacts.iter_mut() {
+    for p in contacts.pairs_mut() {
+        p.impulse = 0.0;
+        if p.pushed > 0.0 {
+            p.prepare(bodies.balls);
+        }
+    }
+    for c in contacts.others.iter_mut() {
         c.impulse = 0.0;
         if c.pushed > 0.0 {
             bodies.prepare(c);
         }
     }
     for _ in 0..iterations {
-        for c in contacts.iter_mut().filter(|c| c.pushed > 0.0) {
+        contacts.sweep(bodies.balls, |p, velocity, first, inv_mass| {
+            if p.pushed > 0.0 {
+                let target = if p.bounce {
+                    -ball_restitution * p.approach
+                } else {
+                    0.0
+                };
+                p.solve(velocity, first, inv_mass, target);
+            }
+        });
+        for c in contacts.others.iter_mut().filter(|c| c.pushed > 0.0) {
             let target = if c.bounce {
                 -c.restitution * c.approach
             } else {

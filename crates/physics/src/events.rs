@@ -44,3 +44,27 @@ pub struct Event {
     /// Approach speed along the normal just before the impact (m/s).
     pub speed: f64,
 }
+
+impl EventKind {
+    /// The same event with every ball number passed through `f`.
+    pub(crate) fn renumber_balls(self, f: impl Fn(usize) -> usize) -> EventKind {
+        match self {
+            EventKind::BallSurface { ball, surface } => EventKind::BallSurface {
+                ball: f(ball),
+                surface,
+            },
+            EventKind::BallBall { a, b } => EventKind::BallBall { a: f(a), b: f(b) },
+            EventKind::BallTumbler {
+                ball,
+                tumbler,
+                sphere,
+            } => EventKind::BallTumbler {
+                ball: f(ball),
+                tumbler,
+                sphere,
+            },
+            EventKind::FireballBall { ball } => EventKind::FireballBall { ball: f(ball) },
+            other => other,
+        }
+    }
+}

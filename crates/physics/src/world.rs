@@ -16,18 +16,23 @@ use crate::balls::{Balls, Tint};
 use crate::broadphase::Grid;
 use crate::ccd::first_impact;
 use crate::config::{Rgb, WorldConfig};
-use crate::contact::{Bodies, BodyRef, Contact, Crowd, solve_predict, solve_project};
+use crate::contact::{
+    Bodies, BodyRef, Contact, Contacts, Crowd, Pair, solve_predict, solve_project,
+};
 use crate::events::{Event, EventKind};
 use crate::fireball::Fireball;
 use crate::rng::Rng;
 use crate::room::{Room, Surface};
 use crate::tumbler::{Grip, GroundedParams, Tumbler, TumblerShape};
 use glam::{DMat3, DQuat, DVec3};
+use rayon::prelude::*;
 
 /// Overlaps smaller than this are left alone (metres).
 const OVERLAP_SLOP: f64 = 1e-5;
 /// A ball this close to a wall is touching it (metres).
 const TOUCH_SLOP: f64 = 1e-6;
+/// From this many live balls on, contacts are found on all threads.
+const PARALLEL_BALLS: usize = 2048;
 
 /// Why a world could not be built from a configuration.
 #[derive(Clone, Debug, PartialEq)]
@@ -68,6 +73,9 @@ pub struct World {
     room: Room,
     shape: TumblerShape,
     balls: Balls,
+    /// The live balls in the grid's cell order, which the step works on so
+    /// that neighbours in space are neighbours in memory (see `step`).
+    sorted: Balls,
     tumblers: Vec<Tumbler>,
     fireball: Option<Fireball>,
     rng: Rng,
@@ -75,7 +83,7 @@ pub struct World {
     steps: u64,
     events: Vec<Event>,
     grid: Grid,
-    contacts: Vec<Contact>,
+    contacts: Contacts,
     contact_inv: Vec<DMat3>,
     /// Per ball: bounced off a wall while moving this step (see `solve_project`).
     hit_wall: Vec<bool>,
@@ -118,6 +126,7 @@ impl World {
         let grid = Grid::new(room.min, room.max, 3.0 * r_max);
         let mut world = World {
             balls: Balls::with_uniform(b.count, b.radius, b.mass),
+            sorted: Balls::default(),
             contact_inv: vec![DMat3::IDENTITY; tumblers.len()],
             tumblers,
             fireball: None,
@@ -126,7 +135,7 @@ impl World {
             steps: 0,
             events: Vec::new(),
             grid,
-            contacts: Vec::new(),
+            contacts: Contacts::default(),
             hit_wall: vec![false; b.count],
             crowd: Crowd::default(),
             room,
@@ -386,6 +395,9 @@ impl World {
     pub fn step(&mut self) {
         let dt = self.config.solver.dt;
         let g = DVec3::new(0.0, -self.config.gravity, 0.0);
+        self.grid.rebuild(&self.balls.position, &self.balls.alive);
+        let first_event = self.events.len();
+        self.enter_sorted_order();
         self.collect_contacts(dt);
 
         // Step-average velocities: half a step of gravity now, half after moving.
@@ -407,6 +419,7 @@ impl World {
         self.move_tumblers(dt);
 
         self.update_contact_inertia();
+        let restitution = self.config.balls.restitution;
         let (mut bodies, contacts, crowd, hit_wall) = self.solver_parts();
         solve_project(
             &mut bodies,
@@ -414,18 +427,60 @@ impl World {
             crowd,
             iterations,
             threshold,
+            restitution,
             hit_wall,
         );
         self.report_contacts();
         self.separate_overlaps();
+        self.leave_sorted_order(first_event);
         self.move_fireball(dt);
 
         self.steps += 1;
         self.time = self.steps as f64 * dt;
     }
 
+    /// Makes `self.balls` the live balls in the grid's cell order for the
+    /// rest of the step: contacts, solving and moving then walk memory in
+    /// the order of space. Ball numbers in this order are slots.
+    fn enter_sorted_order(&mut self) {
+        let order = self.grid.order();
+        let (from, to) = (&self.balls, &mut self.sorted);
+        fn gather<T: Copy>(to: &mut Vec<T>, from: &[T], order: &[u32]) {
+            to.clear();
+            to.extend(order.iter().map(|&id| from[id as usize]));
+        }
+        gather(&mut to.position, &from.position, order);
+        gather(&mut to.velocity, &from.velocity, order);
+        gather(&mut to.spin, &from.spin, order);
+        gather(&mut to.radius, &from.radius, order);
+        gather(&mut to.mass, &from.mass, order);
+        gather(&mut to.inv_mass, &from.inv_mass, order);
+        gather(&mut to.tint, &from.tint, order);
+        to.alive.clear();
+        to.alive.resize(order.len(), true);
+        std::mem::swap(&mut self.balls, &mut self.sorted);
+    }
+
+    /// Writes the sorted balls back to their own numbers, and renumbers the
+    /// balls named by the events of this step (from `first_event` on).
+    fn leave_sorted_order(&mut self, first_event: usize) {
+        std::mem::swap(&mut self.balls, &mut self.sorted);
+        let order = self.grid.order();
+        let (from, to) = (&self.sorted, &mut self.balls);
+        for (slot, &id) in order.iter().enumerate() {
+            let id = id as usize;
+            to.position[id] = from.position[slot];
+            to.velocity[id] = from.velocity[slot];
+            to.spin[id] = from.spin[slot];
+            to.tint[id] = from.tint[slot];
+        }
+        for e in &mut self.events[first_event..] {
+            e.kind = e.kind.renumber_balls(|slot| order[slot] as usize);
+        }
+    }
+
     /// What the solver works on, borrowed apart.
-    fn solver_parts(&mut self) -> (Bodies<'_>, &mut [Contact], &mut Crowd, &[bool]) {
+    fn solver_parts(&mut self) -> (Bodies<'_>, &mut Contacts, &mut Crowd, &[bool]) {
         let bodies = Bodies {
             balls: &mut self.balls,
             tumblers: &mut self.tumblers,
@@ -444,38 +499,48 @@ impl World {
 
     /// All contacts that may act during the coming step.
     fn collect_contacts(&mut self, dt: f64) {
-        self.contacts.clear();
         let balls = &self.balls;
         let room = &self.room;
         let cfg = &self.config;
         // A contact is kept if its gap could close within the step; speculative
         // reach is capped at one ball radius (the grid's cell allows for that).
         let reach_cap = cfg.balls.radius;
-        self.grid.rebuild(&balls.position, &balls.alive);
         let contacts = &mut self.contacts;
 
-        self.grid.for_each_pair(|i, j| {
-            let d = balls.position[i] - balls.position[j];
-            let dist = d.length();
-            let gap = dist - balls.radius[i] - balls.radius[j];
-            let relative = balls.velocity[i] - balls.velocity[j];
-            let closing = relative.length() * dt;
-            if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
-                // Gravity moves both alike, so within the step they close
-                // along a straight line: take the normal at the moment of impact.
-                let (n, gap) = impact_normal(d, relative, balls.radius[i] + balls.radius[j], dt)
-                    .unwrap_or((d / dist, gap));
-                let point = balls.position[j] + n * (balls.radius[j] + 0.5 * gap);
-                contacts.push(Contact::new(
-                    BodyRef::Ball(i),
-                    BodyRef::Ball(j),
-                    n,
-                    point,
-                    gap,
-                    cfg.balls.restitution,
-                ));
-            }
-        });
+        // All balls share one radius.
+        let radius = cfg.balls.radius;
+        let far = 2.0 * radius + reach_cap + TOUCH_SLOP;
+        let grid = &self.grid;
+        contacts.reset(grid.layer_count());
+        grid.layer_slots(&mut contacts.layers);
+        let find_pairs = |(z, band): (usize, &mut Vec<Pair>)| {
+            grid.for_each_close_pair_in_layer(&balls.position, far, z, |i, j| {
+                let d = balls.position[i] - balls.position[j];
+                let dist = d.length();
+                let gap = dist - balls.radius[i] - balls.radius[j];
+                let relative = balls.velocity[i] - balls.velocity[j];
+                let closing = relative.length() * dt;
+                if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
+                    // Gravity moves both alike, so within the step they close
+                    // along a straight line: take the normal at the moment of impact.
+                    let reach = balls.radius[i] + balls.radius[j];
+                    let (n, gap) = impact_normal(d, relative, reach, dt).unwrap_or((d / dist, gap));
+                    band.push(Pair::new(i, j, n, gap));
+                }
+            });
+        };
+        // Each layer fills its own band, so the pairs come out in the same
+        // order on any number of threads.
+        if balls.len() >= PARALLEL_BALLS {
+            contacts
+                .bands
+                .par_iter_mut()
+                .enumerate()
+                .for_each(find_pairs);
+        } else {
+            contacts.bands.iter_mut().enumerate().for_each(find_pairs);
+        }
+        contacts.number_pairs();
 
         // Balls resting on or touching a wall. Faster impacts are found
         // exactly while moving (see `move_balls`).
@@ -496,7 +561,7 @@ impl World {
                         cfg.room.restitution,
                     );
                     c.friction = cfg.room.friction;
-                    contacts.push(c);
+                    contacts.others.push(c);
                 }
             }
         }
@@ -526,7 +591,7 @@ impl World {
                         let closing = (balls.velocity[bi] - t.point_velocity(c)).length() * dt;
                         if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
                             let n = d / dist;
-                            contacts.push(Contact::new(
+                            contacts.others.push(Contact::new(
                                 BodyRef::Ball(bi),
                                 BodyRef::Tumbler(ti, si),
                                 n,
@@ -562,7 +627,7 @@ impl World {
                         let closing = (ta.point_velocity(pa) - tb.point_velocity(pb)).length() * dt;
                         if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
                             let n = d / dist;
-                            contacts.push(Contact::new(
+                            contacts.others.push(Contact::new(
                                 BodyRef::Tumbler(a, si),
                                 BodyRef::Tumbler(b, sj),
                                 n,
@@ -588,7 +653,7 @@ impl World {
                     let gap = room.distance(*wall, c) - s.radius;
                     if gap < speed.min(reach_cap) + TOUCH_SLOP {
                         let n = wall.inward_normal();
-                        contacts.push(Contact::new(
+                        contacts.others.push(Contact::new(
                             BodyRef::Tumbler(a, si),
                             BodyRef::Wall(*wall),
                             n,
@@ -603,7 +668,10 @@ impl World {
 
         // Approach speeds before anything moves: what restitution acts on.
         let (bodies, contacts, _, _) = self.solver_parts();
-        for c in contacts.iter_mut() {
+        for p in contacts.bands.iter_mut().flatten() {
+            p.approach = p.normal_velocity(bodies.balls);
+        }
+        for c in contacts.others.iter_mut() {
             c.approach = bodies.normal_velocity(c);
         }
     }
@@ -612,7 +680,7 @@ impl World {
     /// in proportion to the normal impulse, until it stops.
     fn apply_rolling_resistance(&mut self) {
         let coefficient = self.config.room.rolling_resistance;
-        for c in &self.contacts {
+        for c in &self.contacts.others {
             let (BodyRef::Ball(i), BodyRef::Wall(_)) = (c.a, c.b) else {
                 continue;
             };
@@ -735,12 +803,24 @@ impl World {
     /// Events and colours from the contacts that pushed this step.
     fn report_contacts(&mut self) {
         let threshold = self.config.solver.event_threshold;
-        for c in &self.contacts {
+        for p in self.contacts.pairs() {
+            if p.pushed <= 0.0 || -p.approach <= threshold {
+                continue;
+            }
+            let (i, j) = (p.i as usize, p.j as usize);
+            let gap = p.gap.max(0.0);
+            self.events.push(Event {
+                kind: EventKind::BallBall { a: i, b: j },
+                point: self.balls.position[j] + p.normal * (self.balls.radius[j] + 0.5 * gap),
+                normal: p.normal,
+                speed: -p.approach,
+            });
+        }
+        for c in &self.contacts.others {
             if c.pushed <= 0.0 || -c.approach <= threshold {
                 continue;
             }
             let kind = match (c.a, c.b) {
-                (BodyRef::Ball(i), BodyRef::Ball(j)) => EventKind::BallBall { a: i, b: j },
                 (BodyRef::Ball(i), BodyRef::Wall(s)) => {
                     self.balls.tint[i] = Tint::Surface(s);
                     EventKind::BallSurface {
@@ -772,32 +852,39 @@ impl World {
     fn separate_overlaps(&mut self) {
         let shape = self.shape.clone();
         let shape = &shape;
-        for k in 0..self.contacts.len() {
-            let c = &self.contacts[k];
+        let (mut band, mut k) = (0, 0);
+        while band < self.contacts.bands.len() {
+            if k == self.contacts.bands[band].len() {
+                (band, k) = (band + 1, 0);
+                continue;
+            }
+            k += 1;
+            let pair = &self.contacts.bands[band][k - 1];
+            let (i, j) = (pair.i as usize, pair.j as usize);
+            let d = self.balls.position[i] - self.balls.position[j];
+            let dist = d.length();
+            let overlap = self.balls.radius[i] + self.balls.radius[j] - dist;
+            if overlap > OVERLAP_SLOP && dist > 0.0 {
+                let n = d / dist;
+                // Weighted by mass the pair's centre of mass stays put;
+                // a ball lying on a wall cannot be pushed into it.
+                let (wi, wj) = match (self.pressed_on_wall(i, n), self.pressed_on_wall(j, -n)) {
+                    (false, false) => (self.balls.inv_mass[i], self.balls.inv_mass[j]),
+                    (false, true) => (1.0, 0.0),
+                    (true, false) => (0.0, 1.0),
+                    (true, true) => continue,
+                };
+                let di = self.push_inside(i, n * (overlap * wi / (wi + wj)));
+                let dj = self.push_inside(j, -n * (overlap * wj / (wi + wj)));
+                let rise = self.balls.mass[i] * di.y + self.balls.mass[j] * dj.y;
+                let part = self.pay_for_rise(&[i, j], rise * self.config.gravity);
+                self.balls.position[i] += di * part;
+                self.balls.position[j] += dj * part;
+            }
+        }
+        for k in 0..self.contacts.others.len() {
+            let c = &self.contacts.others[k];
             match (c.a, c.b) {
-                (BodyRef::Ball(i), BodyRef::Ball(j)) => {
-                    let d = self.balls.position[i] - self.balls.position[j];
-                    let dist = d.length();
-                    let overlap = self.balls.radius[i] + self.balls.radius[j] - dist;
-                    if overlap > OVERLAP_SLOP && dist > 0.0 {
-                        let n = d / dist;
-                        // Weighted by mass the pair's centre of mass stays put;
-                        // a ball lying on a wall cannot be pushed into it.
-                        let (wi, wj) =
-                            match (self.pressed_on_wall(i, n), self.pressed_on_wall(j, -n)) {
-                                (false, false) => (self.balls.inv_mass[i], self.balls.inv_mass[j]),
-                                (false, true) => (1.0, 0.0),
-                                (true, false) => (0.0, 1.0),
-                                (true, true) => continue,
-                            };
-                        let di = self.push_inside(i, n * (overlap * wi / (wi + wj)));
-                        let dj = self.push_inside(j, -n * (overlap * wj / (wi + wj)));
-                        let rise = self.balls.mass[i] * di.y + self.balls.mass[j] * dj.y;
-                        let part = self.pay_for_rise(&[i, j], rise * self.config.gravity);
-                        self.balls.position[i] += di * part;
-                        self.balls.position[j] += dj * part;
-                    }
-                }
                 (BodyRef::Ball(i), BodyRef::Tumbler(t, s)) => {
                     let centre = self.tumblers[t].sphere_center(shape, s);
                     let d = self.balls.position[i] - centre;

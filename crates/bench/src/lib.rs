@@ -1,0 +1,2 @@
+pub mod pit;
+pub mod rapier_pit;
