@@ -1,2 +1,8 @@
+//! The same ball pit in the rolypoly engine and in Rapier, and the figures
+//! that compare them: speed, and how well each keeps the balls apart, inside
+//! the box and at rest. `cargo bench -p rolypoly-bench` prints the table.
+
+pub mod ours;
 pub mod pit;
+pub mod quality;
 pub mod rapier_pit;

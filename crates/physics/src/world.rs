@@ -87,6 +87,8 @@ pub struct World {
     contact_inv: Vec<DMat3>,
     /// Per ball: bounced off a wall while moving this step (see `solve_project`).
     hit_wall: Vec<bool>,
+    /// Per ball: has a contact with another ball this step.
+    crowded: Vec<bool>,
     crowd: Crowd,
 }
 
@@ -137,6 +139,8 @@ impl World {
             grid,
             contacts: Contacts::default(),
             hit_wall: vec![false; b.count],
+            crowded: Vec::new(),
+
             crowd: Crowd::default(),
             room,
             shape,
@@ -519,7 +523,10 @@ impl World {
                 let dist = d.length();
                 let gap = dist - balls.radius[i] - balls.radius[j];
                 let relative = balls.velocity[i] - balls.velocity[j];
-                let closing = relative.length() * dt;
+                // Either ball may bounce off a wall within the step and come
+                // back at up to its speed: allow for that.
+                let speeds = balls.velocity[i].length() + balls.velocity[j].length();
+                let closing = relative.length().max(2.0 * speeds) * dt;
                 if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
                     // Gravity moves both alike, so within the step they close
                     // along a straight line: take the normal at the moment of impact.
@@ -542,22 +549,38 @@ impl World {
         }
         contacts.number_pairs();
 
-        // Balls resting on or touching a wall. Faster impacts are found
-        // exactly while moving (see `move_balls`).
-        for i in 0..balls.len() {
+        // Balls resting on or touching a wall. A lone ball's impacts are
+        // found exactly while moving (see `move_balls`); a ball pressed by
+        // others gets a speculative contact with every wall it could reach
+        // in the step, so that it stops there with them instead of bouncing
+        // back into them (which would sink balls into each other).
+        let crowded = &mut self.crowded;
+        crowded.clear();
+        crowded.resize(balls.len(), false);
+        for p in contacts.bands.iter().flatten() {
+            crowded[p.i as usize] = true;
+            crowded[p.j as usize] = true;
+        }
+        for (i, &crowded) in crowded.iter().enumerate() {
             if !balls.alive[i] {
                 continue;
             }
             for s in Surface::ALL {
                 let gap = room.distance(s, balls.position[i]) - balls.radius[i];
-                if gap <= TOUCH_SLOP {
-                    let n = s.inward_normal();
+                let n = s.inward_normal();
+                // Others may push it as far as it could fly: allow for both.
+                let reach = if crowded {
+                    (-balls.velocity[i].dot(n) * dt).max(reach_cap)
+                } else {
+                    0.0
+                };
+                if gap <= reach + TOUCH_SLOP {
                     let mut c = Contact::new(
                         BodyRef::Ball(i),
                         BodyRef::Wall(s),
                         n,
                         balls.position[i] - n * balls.radius[i],
-                        gap.min(0.0),
+                        if gap > TOUCH_SLOP { gap } else { gap.min(0.0) },
                         cfg.room.restitution,
                     );
                     c.friction = cfg.room.friction;
@@ -713,6 +736,14 @@ impl World {
                 continue;
             }
             let r = self.balls.radius[i];
+            if self.crowded[i] {
+                // Its walls are in the solver already (see `collect_contacts`):
+                // the step-average velocity carries it along its parabola.
+                let v = self.balls.velocity[i];
+                self.balls.position[i] = room.clamp_sphere(self.balls.position[i] + v * dt, r);
+                self.balls.velocity[i] = v + 0.5 * dt * gravity;
+                continue;
+            }
             let m = self.balls.mass[i];
             let inertia = self.balls.inertia(i);
             let mut x = self.balls.position[i];
@@ -872,10 +903,15 @@ impl World {
                     (false, false) => (self.balls.inv_mass[i], self.balls.inv_mass[j]),
                     (false, true) => (1.0, 0.0),
                     (true, false) => (0.0, 1.0),
-                    (true, true) => continue,
+                    // Pinned both ways: each moves as far as its walls allow.
+                    (true, true) => (self.balls.inv_mass[i], self.balls.inv_mass[j]),
                 };
-                let di = self.push_inside(i, n * (overlap * wi / (wi + wj)));
-                let dj = self.push_inside(j, -n * (overlap * wj / (wi + wj)));
+                // Never down: pushing balls down for free is a ratchet that
+                // lets a pile sink into itself (the ball below cannot be
+                // pushed up again unless it pays for the rise).
+                let up = |d: DVec3| DVec3::new(d.x, d.y.max(0.0), d.z);
+                let di = up(self.push_inside(i, n * (overlap * wi / (wi + wj))));
+                let dj = up(self.push_inside(j, -n * (overlap * wj / (wi + wj))));
                 let rise = self.balls.mass[i] * di.y + self.balls.mass[j] * dj.y;
                 let part = self.pay_for_rise(&[i, j], rise * self.config.gravity);
                 self.balls.position[i] += di * part;

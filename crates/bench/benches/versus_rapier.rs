@@ -1,0 +1,149 @@
+//! The rolypoly engine against Rapier on the same ball pit, in one process.
+//!
+//! `cargo bench -p rolypoly-bench` runs pits of 1k, 10k and 100k balls;
+//! `cargo bench -p rolypoly-bench -- 1000 5000` picks the sizes. Each pit is
+//! simulated for the same time by both engines from the same start; only
+//! `step` calls are timed. Quality is measured every half second (untimed)
+//! and at the end.
+
+use rolypoly_bench::ours::OurPit;
+use rolypoly_bench::pit::{Pit, PitEngine};
+use rolypoly_bench::quality::{Quality, measure};
+use rolypoly_bench::rapier_pit::RapierPit;
+use rolypoly_physics::{World, WorldConfig};
+use std::time::Instant;
+
+/// Simulated time of every pit run (s).
+const SECONDS: f64 = 3.0;
+
+struct Run {
+    steps_per_second: f64,
+    /// Worst over the run (penetration, escapes).
+    worst: Quality,
+    /// At the end (energy, rest).
+    end: Quality,
+}
+
+fn run(engine: &mut dyn PitEngine, pit: &Pit) -> Run {
+    let steps = (SECONDS / pit.dt).round() as usize;
+    let sample_every = (0.5 / pit.dt).round() as usize;
+    let (mut positions, mut velocities) = (Vec::new(), Vec::new());
+    let mut worst = Quality::default();
+    let mut timed = 0.0;
+    for step in 1..=steps {
+        let start = Instant::now();
+        engine.step();
+        timed += start.elapsed().as_secs_f64();
+        if step % sample_every == 0 || step == steps {
+            engine.read(&mut positions, &mut velocities);
+            worst = worst.worst(measure(pit, &positions, &velocities));
+        }
+    }
+    engine.read(&mut positions, &mut velocities);
+    Run {
+        steps_per_second: steps as f64 / timed,
+        worst,
+        end: measure(pit, &positions, &velocities),
+    }
+}
+
+fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
+    println!(
+        "{:>7} {:<14} {:>9.1} {:>13.3e} {:>7.2} {:>13.2} {:>8} {:>12.3} {:>8}",
+        balls,
+        name,
+        r.steps_per_second,
+        r.steps_per_second * balls as f64,
+        ratio,
+        r.worst.max_penetration * 1e3,
+        r.worst.escapes,
+        r.end.kinetic_energy,
+        if r.end.at_rest() { "yes" } else { "no" },
+    );
+}
+
+/// Step time of the default scene with the fireball flying (ours only).
+fn default_scene_with_fireball() -> Result<f64, String> {
+    let mut world = World::new(WorldConfig::default(), 1).map_err(|e| e.to_string())?;
+    world.launch_fireball(None);
+    for _ in 0..60 {
+        world.step();
+        world.drain_events().for_each(drop);
+    }
+    let steps = 1200;
+    let start = Instant::now();
+    for _ in 0..steps {
+        world.step();
+        world.drain_events().for_each(drop);
+    }
+    Ok(start.elapsed().as_secs_f64() / steps as f64)
+}
+
+fn main() {
+    let sizes: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-'))
+        .map(|a| match a.parse() {
+            Ok(n) => n,
+            Err(_) => {
+                eprintln!("versus_rapier: '{a}' is not a ball count");
+                std::process::exit(2);
+            }
+        })
+        .collect();
+    let sizes = if sizes.is_empty() {
+        vec![1_000, 10_000, 100_000]
+    } else {
+        sizes
+    };
+    println!(
+        "pit: balls of radius 0.1 m, mass 1 kg, restitution 0.8, wall friction 0.5, \
+         dt 1/60 s, {SECONDS} s simulated; threads: {}",
+        rayon_threads()
+    );
+    println!(
+        "{:>7} {:<14} {:>9} {:>13} {:>7} {:>13} {:>8} {:>12} {:>8}",
+        "balls",
+        "engine",
+        "steps/s",
+        "ball-steps/s",
+        "ratio",
+        "overlap (mm)",
+        "escapes",
+        "KE end (J)",
+        "at rest"
+    );
+    for n in sizes {
+        let pit = Pit::new(n, 7);
+        let mut ours = match OurPit::new(&pit) {
+            Ok(p) => p,
+            Err(e) => {
+                eprintln!("versus_rapier: {n} balls: {e}");
+                std::process::exit(1);
+            }
+        };
+        let our_run = run(&mut ours, &pit);
+        drop(ours);
+        let mut rapier = RapierPit::new(&pit);
+        let name = rapier.name();
+        let rapier_run = run(&mut rapier, &pit);
+        let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
+        print_row(n, "rolypoly", &our_run, ratio);
+        print_row(n, &name, &rapier_run, 1.0);
+    }
+    match default_scene_with_fireball() {
+        Ok(t) => println!(
+            "default scene (30 balls, 5 tumblers) with the fireball: {:.1} us/step",
+            t * 1e6
+        ),
+        Err(e) => eprintln!("versus_rapier: default scene: {e}"),
+    }
+}
+
+fn rayon_threads() -> usize {
+    std::env::var("RAYON_NUM_THREADS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
