@@ -393,3 +393,16 @@ fn the_scene_files_light_lights_the_frame() {
         "a dimmer light gave {dim:.0} against {bright:.0}"
     );
 }
+
+#[test]
+fn the_shipped_ball_pit_scene_loads_and_steps() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/ballpit-100k.toml"
+    );
+    let output = rolypoly(&["simulate", "--steps", "1", "--scene", path]);
+    let out = stdout(&output);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(out.contains("100000 balls (100000 in play"), "{out}");
+    assert!(out.contains("5 tumblers"), "{out}");
+}
