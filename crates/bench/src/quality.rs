@@ -44,8 +44,9 @@ pub fn measure(pit: &Pit, positions: &[DVec3], velocities: &[DVec3]) -> Quality 
     let lo = DVec3::new(-0.5 * pit.size.x, 0.0, -0.5 * pit.size.z);
     let hi = DVec3::new(0.5 * pit.size.x, pit.size.y, 0.5 * pit.size.z);
     let mut q = Quality::default();
+    let inside = |p: &DVec3| p.is_finite() && p.cmpge(lo).all() && p.cmple(hi).all();
     for (p, v) in positions.iter().zip(velocities) {
-        if !p.is_finite() || p.cmplt(lo).any() || p.cmpgt(hi).any() {
+        if !inside(p) {
             q.escapes += 1;
             continue;
         }
@@ -54,19 +55,14 @@ pub fn measure(pit: &Pit, positions: &[DVec3], velocities: &[DVec3]) -> Quality 
         q.kinetic_energy += 0.5 * pit.mass * v.length_squared();
         q.max_speed = q.max_speed.max(v.length());
     }
-    // Ball pairs: hash the centres into cells one diameter wide, so every
-    // overlapping pair shares a cell or sits in neighbouring ones.
+    // Pairs of balls inside: hash the centres into cells one diameter wide,
+    // so every overlapping pair shares a cell or sits in neighbouring ones.
     let cell = |p: DVec3| (p / (2.0 * r)).floor().as_ivec3();
     let mut cells: HashMap<IVec3, Vec<usize>> = HashMap::new();
-    for (i, p) in positions.iter().enumerate() {
-        if p.is_finite() {
-            cells.entry(cell(*p)).or_default().push(i);
-        }
+    for (i, p) in positions.iter().enumerate().filter(|(_, p)| inside(p)) {
+        cells.entry(cell(*p)).or_default().push(i);
     }
-    for (i, p) in positions.iter().enumerate() {
-        if !p.is_finite() {
-            continue;
-        }
+    for (i, p) in positions.iter().enumerate().filter(|(_, p)| inside(p)) {
         let c = cell(*p);
         for dz in -1..=1 {
             for dy in -1..=1 {
