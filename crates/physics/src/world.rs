@@ -883,39 +883,10 @@ impl World {
     fn separate_overlaps(&mut self) {
         let shape = self.shape.clone();
         let shape = &shape;
-        let (mut band, mut k) = (0, 0);
-        while band < self.contacts.bands.len() {
-            if k == self.contacts.bands[band].len() {
-                (band, k) = (band + 1, 0);
-                continue;
-            }
-            k += 1;
-            let pair = &self.contacts.bands[band][k - 1];
-            let (i, j) = (pair.i as usize, pair.j as usize);
-            let d = self.balls.position[i] - self.balls.position[j];
-            let dist = d.length();
-            let overlap = self.balls.radius[i] + self.balls.radius[j] - dist;
-            if overlap > OVERLAP_SLOP && dist > 0.0 {
-                let n = d / dist;
-                // Weighted by mass the pair's centre of mass stays put;
-                // a ball lying on a wall cannot be pushed into it.
-                let (wi, wj) = match (self.pressed_on_wall(i, n), self.pressed_on_wall(j, -n)) {
-                    (false, false) => (self.balls.inv_mass[i], self.balls.inv_mass[j]),
-                    (false, true) => (1.0, 0.0),
-                    (true, false) => (0.0, 1.0),
-                    // Pinned both ways: each moves as far as its walls allow.
-                    (true, true) => (self.balls.inv_mass[i], self.balls.inv_mass[j]),
-                };
-                // Never down: pushing balls down for free is a ratchet that
-                // lets a pile sink into itself (the ball below cannot be
-                // pushed up again unless it pays for the rise).
-                let up = |d: DVec3| DVec3::new(d.x, d.y.max(0.0), d.z);
-                let di = up(self.push_inside(i, n * (overlap * wi / (wi + wj))));
-                let dj = up(self.push_inside(j, -n * (overlap * wj / (wi + wj))));
-                let rise = self.balls.mass[i] * di.y + self.balls.mass[j] * dj.y;
-                let part = self.pay_for_rise(&[i, j], rise * self.config.gravity);
-                self.balls.position[i] += di * part;
-                self.balls.position[j] += dj * part;
+        for band in 0..self.contacts.bands.len() {
+            for k in 0..self.contacts.bands[band].len() {
+                let pair = &self.contacts.bands[band][k];
+                self.separate_balls(pair.i as usize, pair.j as usize);
             }
         }
         for k in 0..self.contacts.others.len() {
@@ -982,6 +953,34 @@ impl World {
             self.balls.position[i] = self
                 .room
                 .clamp_sphere(self.balls.position[i], self.balls.radius[i]);
+        }
+    }
+
+    /// Pushes two overlapping balls apart along their line of centres.
+    fn separate_balls(&mut self, i: usize, j: usize) {
+        let d = self.balls.position[i] - self.balls.position[j];
+        let dist = d.length();
+        let overlap = self.balls.radius[i] + self.balls.radius[j] - dist;
+        if overlap > OVERLAP_SLOP && dist > 0.0 {
+            let n = d / dist;
+            // Weighted by mass the pair's centre of mass stays put;
+            // a ball lying on a wall cannot be pushed into it.
+            let (wi, wj) = match (self.pressed_on_wall(i, n), self.pressed_on_wall(j, -n)) {
+                (false, true) => (1.0, 0.0),
+                (true, false) => (0.0, 1.0),
+                // Free, or pinned both ways: each moves as far as its walls allow.
+                _ => (self.balls.inv_mass[i], self.balls.inv_mass[j]),
+            };
+            // Never down: pushing balls down for free is a ratchet that
+            // lets a pile sink into itself (the ball below cannot be
+            // pushed up again unless it pays for the rise).
+            let up = |d: DVec3| DVec3::new(d.x, d.y.max(0.0), d.z);
+            let di = up(self.push_inside(i, n * (overlap * wi / (wi + wj))));
+            let dj = up(self.push_inside(j, -n * (overlap * wj / (wi + wj))));
+            let rise = self.balls.mass[i] * di.y + self.balls.mass[j] * dj.y;
+            let part = self.pay_for_rise(&[i, j], rise * self.config.gravity);
+            self.balls.position[i] += di * part;
+            self.balls.position[j] += dj * part;
         }
     }
 
