@@ -32,6 +32,10 @@ impl OurPit {
         }
         Ok(OurPit { world })
     }
+
+    pub fn world(&self) -> &World {
+        &self.world
+    }
 }
 
 impl PitEngine for OurPit {

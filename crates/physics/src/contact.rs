@@ -17,6 +17,7 @@
 use crate::balls::Balls;
 use crate::room::Surface;
 use crate::tumbler::{Response, Tumbler, TumblerShape};
+use crate::warm::WarmStart;
 use glam::{DMat3, DVec3};
 
 /// Surfaces closer than this (metres) at the end of a step count as touching.
@@ -489,6 +490,10 @@ impl Crowd {
 /// its full approach speed: a tumbler's response to an impulse changes as it
 /// turns, and splitting one impact over two configurations could create
 /// energy.
+///
+/// With `warm` (last step's impulses and each slot's ball number) pairs and
+/// ball-wall contacts start from the impulse that held them last step.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_predict(
     bodies: &mut Bodies,
     contacts: &mut Contacts,
@@ -496,7 +501,12 @@ pub(crate) fn solve_predict(
     iterations: usize,
     dt: f64,
     bounce_threshold: f64,
+    warm: Option<(&WarmStart, &[u32])>,
 ) {
+    // Every ball within reach counts against a bounce, touching or not: a
+    // ball sent back by a tumbler may meet a neighbour it was leaving, and
+    // pressing it would make the bounce pump energy. Other contacts count
+    // once they touch within the step.
     crowd.reset(bodies.balls.len(), bodies.tumblers.len());
     let touching =
         |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
@@ -504,10 +514,8 @@ pub(crate) fn solve_predict(
         p.prepare(bodies.balls);
         p.impulse = 0.0;
         p.kick = p.normal_velocity(bodies.balls) - p.approach;
-        if touching(p.gap, p.approach, p.kick) {
-            crowd.add_ball(index, p.i as usize);
-            crowd.add_ball(index, p.j as usize);
-        }
+        crowd.add_ball(index, p.i as usize);
+        crowd.add_ball(index, p.j as usize);
     }
     let first_other = contacts.pair_count();
     for (k, c) in contacts.others.iter_mut().enumerate() {
@@ -527,6 +535,9 @@ pub(crate) fn solve_predict(
             && c.gap + c.approach * dt <= 0.0
             && crowd.lone(first_other + k, contacts);
         contacts.others[k].bounce = bounce;
+    }
+    if let Some((warm, ids)) = warm {
+        apply_warm_start(bodies, contacts, warm, ids, Stage::Predict);
     }
     for _ in 0..iterations {
         contacts.sweep(bodies.balls, |p, velocity, first, inv_mass| {
@@ -555,6 +566,82 @@ pub(crate) fn solve_predict(
     }
 }
 
+/// The two solver stages, each warm-started from its own impulses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Stage {
+    Predict,
+    Project,
+}
+
+impl Stage {
+    /// Whether the stage solves contact `pushed`/`bounce`; bouncing contacts
+    /// start cold, their impulse is of this impact alone.
+    fn warm_starts(self, pushed: f64, bounce: bool) -> bool {
+        !bounce && (self == Stage::Predict || pushed > 0.0)
+    }
+}
+
+/// Starts pairs and ball-wall contacts from last step's impulses.
+fn apply_warm_start(
+    bodies: &mut Bodies,
+    contacts: &mut Contacts,
+    warm: &WarmStart,
+    ids: &[u32],
+    stage: Stage,
+) {
+    let balls = &mut *bodies.balls;
+    for p in contacts.bands.iter_mut().flatten() {
+        if !stage.warm_starts(p.pushed, p.bounce) {
+            continue;
+        }
+        let (i, j) = (p.i as usize, p.j as usize);
+        let impulse = warm.pair(ids[i], ids[j]);
+        if impulse > 0.0 {
+            p.impulse = impulse;
+            balls.velocity[i] += p.normal * (impulse * balls.inv_mass[i]);
+            balls.velocity[j] -= p.normal * (impulse * balls.inv_mass[j]);
+        }
+    }
+    for c in contacts.others.iter_mut() {
+        if !stage.warm_starts(c.pushed, c.bounce) {
+            continue;
+        }
+        if let (BodyRef::Ball(i), BodyRef::Wall(s)) = (c.a, c.b) {
+            let impulse = warm.wall(ids[i], s);
+            if impulse > 0.0 {
+                c.impulse = impulse;
+                balls.velocity[i] += c.normal * (impulse * balls.inv_mass[i]);
+            }
+        }
+    }
+}
+
+/// Keeps the impulses of `stage` for the next step's warm start (into a
+/// `warm` cleared for every ball number).
+pub(crate) fn record_warm_start(
+    contacts: &Contacts,
+    warm: &mut WarmStart,
+    ids: &[u32],
+    stage: Stage,
+) {
+    let of = |pushed: f64, impulse: f64| match stage {
+        Stage::Predict => pushed,
+        Stage::Project => impulse,
+    };
+    for p in contacts.pairs() {
+        warm.record_pair(
+            ids[p.i as usize],
+            ids[p.j as usize],
+            of(p.pushed, p.impulse),
+        );
+    }
+    for c in &contacts.others {
+        if let (BodyRef::Ball(i), BodyRef::Wall(s)) = (c.a, c.b) {
+            warm.record_wall(ids[i], s, of(c.pushed, c.impulse));
+        }
+    }
+}
+
 /// Stage 2: contacts that pushed end bouncing or resting.
 ///
 /// A lone impact between balls, or of a ball on a wall, bounces to the speed
@@ -562,6 +649,7 @@ pub(crate) fn solve_predict(
 /// obeys the 1-D formulas exactly); every other contact that pushed ends at
 /// rest. A ball that bounced off a wall while moving has spent its approach
 /// already: `hit_wall` marks those, and their contacts only stop.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_project(
     bodies: &mut Bodies,
     contacts: &mut Contacts,
@@ -570,6 +658,7 @@ pub(crate) fn solve_project(
     bounce_threshold: f64,
     ball_restitution: f64,
     hit_wall: &[bool],
+    warm: Option<(&WarmStart, &[u32])>,
 ) {
     crowd.reset(bodies.balls.len(), bodies.tumblers.len());
     for (index, p) in contacts.pairs().enumerate() {
@@ -619,6 +708,9 @@ pub(crate) fn solve_project(
         if c.pushed > 0.0 {
             bodies.prepare(c);
         }
+    }
+    if let Some((warm, ids)) = warm {
+        apply_warm_start(bodies, contacts, warm, ids, Stage::Project);
     }
     for _ in 0..iterations {
         contacts.sweep(bodies.balls, |p, velocity, first, inv_mass| {

@@ -25,6 +25,7 @@ mod fireball;
 mod rng;
 mod room;
 mod tumbler;
+mod warm;
 mod world;
 
 pub use balls::{Balls, Tint};

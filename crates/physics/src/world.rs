@@ -17,13 +17,15 @@ use crate::broadphase::Grid;
 use crate::ccd::first_impact;
 use crate::config::{Rgb, WorldConfig};
 use crate::contact::{
-    Bodies, BodyRef, Contact, Contacts, Crowd, Pair, solve_predict, solve_project,
+    Bodies, BodyRef, Contact, Contacts, Crowd, Pair, Stage, record_warm_start, solve_predict,
+    solve_project,
 };
 use crate::events::{Event, EventKind};
 use crate::fireball::Fireball;
 use crate::rng::Rng;
 use crate::room::{Room, Surface};
 use crate::tumbler::{Grip, GroundedParams, Tumbler, TumblerShape};
+use crate::warm::WarmStart;
 use glam::{DMat3, DQuat, DVec3};
 use rayon::prelude::*;
 
@@ -59,6 +61,16 @@ impl Energy {
     }
 }
 
+/// The world's parts that the contact solver reads and writes.
+struct SolverParts<'a> {
+    bodies: Bodies<'a>,
+    contacts: &'a mut Contacts,
+    crowd: &'a mut Crowd,
+    hit_wall: &'a [bool],
+    /// Last step's impulses of the stage, and each slot's ball number.
+    warm: Option<(&'a WarmStart, &'a [u32])>,
+}
+
 /// A tumbler hit by a pick ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pick {
@@ -87,9 +99,14 @@ pub struct World {
     contact_inv: Vec<DMat3>,
     /// Per ball: bounced off a wall while moving this step (see `solve_project`).
     hit_wall: Vec<bool>,
-    /// Per ball: has a contact with another ball this step.
-    crowded: Vec<bool>,
+    /// Per ball: how many other balls it may touch this step (saturating).
+    ball_partners: Vec<u8>,
     crowd: Crowd,
+    /// Last step's impulses of each solver stage, by ball number (see [`crate::warm`]).
+    warm: [WarmStart; 2],
+    /// The state before a warm-started step, to retake it cold if it made energy.
+    before_step: (Balls, Vec<Tumbler>),
+    cold_retakes: u64,
 }
 
 impl World {
@@ -139,9 +156,12 @@ impl World {
             grid,
             contacts: Contacts::default(),
             hit_wall: vec![false; b.count],
-            crowded: Vec::new(),
+            ball_partners: Vec::new(),
 
             crowd: Crowd::default(),
+            warm: Default::default(),
+            before_step: Default::default(),
+            cold_retakes: 0,
             room,
             shape,
             config,
@@ -221,6 +241,8 @@ impl World {
     /// Re-initialises the balls (I6): new random positions and velocities
     /// from the world's random sequence, every ball alive and white again.
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
+        // New balls under old numbers: last step's impulses mean nothing now.
+        self.warm.iter_mut().for_each(|w| w.clear(0));
         self.spawn_balls()
     }
 
@@ -396,8 +418,59 @@ impl World {
     }
 
     /// Advances the world by one fixed time step.
+    ///
+    /// The contact solver starts from last step's impulses (see
+    /// [`crate::warm`]). Should that make energy (only the hand may feed
+    /// some in), the excess is taken from the balls' motion, all slowed
+    /// alike; if they have too little, the step is retaken from its start
+    /// without a warm start. Either way energy never grows.
     pub fn step(&mut self) {
         let dt = self.config.solver.dt;
+        if self.grabbed().is_some() {
+            self.advance(dt, true);
+        } else {
+            let before = self.energy().total();
+            self.before_step.0.clone_from(&self.balls);
+            self.before_step.1.clone_from(&self.tumblers);
+            let first_event = self.events.len();
+            self.advance(dt, true);
+            let after = self.energy().total();
+            if after > before && !self.take_kinetic_energy(after - before, before) {
+                self.balls.clone_from(&self.before_step.0);
+                self.tumblers.clone_from(&self.before_step.1);
+                self.events.truncate(first_event);
+                self.cold_retakes += 1;
+                self.advance(dt, false);
+            }
+        }
+        self.move_fireball(dt);
+        self.steps += 1;
+        self.time = self.steps as f64 * dt;
+    }
+
+    /// Takes `excess` joules from the balls' motion, all slowed alike, if
+    /// they have it and the world then holds no more than `limit`.
+    fn take_kinetic_energy(&mut self, excess: f64, limit: f64) -> bool {
+        let live = || (0..self.balls.len()).filter(|&i| self.balls.alive[i]);
+        let kinetic: f64 = live().map(|i| self.balls.kinetic_energy(i)).sum();
+        if kinetic <= excess {
+            return false;
+        }
+        let keep = ((kinetic - excess) / kinetic).sqrt();
+        for i in 0..self.balls.len() {
+            self.balls.velocity[i] *= keep;
+            self.balls.spin[i] *= keep;
+        }
+        self.energy().total() <= limit
+    }
+
+    /// How many steps were retaken without a warm start (see [`World::step`]).
+    pub fn cold_retakes(&self) -> u64 {
+        self.cold_retakes
+    }
+
+    /// One step of the balls and tumblers, with or without a warm start.
+    fn advance(&mut self, dt: f64, warm_start: bool) {
         let g = DVec3::new(0.0, -self.config.gravity, 0.0);
         self.grid.rebuild(&self.balls.position, &self.balls.alive);
         let first_event = self.events.len();
@@ -415,8 +488,17 @@ impl World {
             self.config.solver.iterations,
             self.config.solver.bounce_threshold,
         );
-        let (mut bodies, contacts, crowd, _) = self.solver_parts();
-        solve_predict(&mut bodies, contacts, crowd, iterations, dt, threshold);
+        let mut parts = self.solver_parts(warm_start.then_some(Stage::Predict));
+        solve_predict(
+            &mut parts.bodies,
+            parts.contacts,
+            parts.crowd,
+            iterations,
+            dt,
+            threshold,
+            parts.warm,
+        );
+        self.record_warm_start(Stage::Predict);
         self.apply_rolling_resistance();
 
         self.move_balls(dt, g);
@@ -424,23 +506,21 @@ impl World {
 
         self.update_contact_inertia();
         let restitution = self.config.balls.restitution;
-        let (mut bodies, contacts, crowd, hit_wall) = self.solver_parts();
+        let mut parts = self.solver_parts(warm_start.then_some(Stage::Project));
         solve_project(
-            &mut bodies,
-            contacts,
-            crowd,
+            &mut parts.bodies,
+            parts.contacts,
+            parts.crowd,
             iterations,
             threshold,
             restitution,
-            hit_wall,
+            parts.hit_wall,
+            parts.warm,
         );
+        self.record_warm_start(Stage::Project);
         self.report_contacts();
         self.separate_overlaps();
         self.leave_sorted_order(first_event);
-        self.move_fireball(dt);
-
-        self.steps += 1;
-        self.time = self.steps as f64 * dt;
     }
 
     /// Makes `self.balls` the live balls in the grid's cell order for the
@@ -483,8 +563,16 @@ impl World {
         }
     }
 
-    /// What the solver works on, borrowed apart.
-    fn solver_parts(&mut self) -> (Bodies<'_>, &mut Contacts, &mut Crowd, &[bool]) {
+    fn record_warm_start(&mut self, stage: Stage) {
+        // In sorted order `self.sorted` holds every ball number.
+        let warm = &mut self.warm[stage as usize];
+        warm.clear(self.sorted.len());
+        record_warm_start(&self.contacts, warm, self.grid.order(), stage);
+    }
+
+    /// What the solver works on, borrowed apart, with the warm start of
+    /// `stage` if there is one.
+    fn solver_parts(&mut self, stage: Option<Stage>) -> SolverParts<'_> {
         let bodies = Bodies {
             balls: &mut self.balls,
             tumblers: &mut self.tumblers,
@@ -492,7 +580,13 @@ impl World {
             contact_inv: &self.contact_inv,
             floor_friction: self.config.tumblers.floor_friction,
         };
-        (bodies, &mut self.contacts, &mut self.crowd, &self.hit_wall)
+        SolverParts {
+            bodies,
+            contacts: &mut self.contacts,
+            crowd: &mut self.crowd,
+            hit_wall: &self.hit_wall,
+            warm: stage.map(|s| (&self.warm[s as usize], self.grid.order())),
+        }
     }
 
     fn update_contact_inertia(&mut self) {
@@ -554,14 +648,15 @@ impl World {
         // others gets a speculative contact with every wall it could reach
         // in the step, so that it stops there with them instead of bouncing
         // back into them (which would sink balls into each other).
-        let crowded = &mut self.crowded;
-        crowded.clear();
-        crowded.resize(balls.len(), false);
+        let partners = &mut self.ball_partners;
+        partners.clear();
+        partners.resize(balls.len(), 0);
         for p in contacts.bands.iter().flatten() {
-            crowded[p.i as usize] = true;
-            crowded[p.j as usize] = true;
+            partners[p.i as usize] = partners[p.i as usize].saturating_add(1);
+            partners[p.j as usize] = partners[p.j as usize].saturating_add(1);
         }
-        for (i, &crowded) in crowded.iter().enumerate() {
+        for (i, &count) in partners.iter().enumerate() {
+            let crowded = count > 0;
             if !balls.alive[i] {
                 continue;
             }
@@ -690,7 +785,9 @@ impl World {
         }
 
         // Approach speeds before anything moves: what restitution acts on.
-        let (bodies, contacts, _, _) = self.solver_parts();
+        let SolverParts {
+            bodies, contacts, ..
+        } = self.solver_parts(None);
         for p in contacts.bands.iter_mut().flatten() {
             p.approach = p.normal_velocity(bodies.balls);
         }
@@ -736,7 +833,7 @@ impl World {
                 continue;
             }
             let r = self.balls.radius[i];
-            if self.crowded[i] {
+            if self.ball_partners[i] > 0 {
                 // Its walls are in the solver already (see `collect_contacts`):
                 // the step-average velocity carries it along its parabola.
                 let v = self.balls.velocity[i];
@@ -880,13 +977,23 @@ impl World {
 
     /// Pushes apart bodies that still overlap: balls along the line of
     /// centres, weighted by mass; tumblers only sideways over the floor.
+    ///
+    /// Two balls are pushed apart only when neither touches a third: in a
+    /// crowd, pushing one pair apart drives its balls into their neighbours,
+    /// and a pile pushed pair by pair sinks into itself. There the solver,
+    /// warm-started, keeps overlaps from growing instead.
     fn separate_overlaps(&mut self) {
         let shape = self.shape.clone();
         let shape = &shape;
         for band in 0..self.contacts.bands.len() {
             for k in 0..self.contacts.bands[band].len() {
-                let pair = &self.contacts.bands[band][k];
-                self.separate_balls(pair.i as usize, pair.j as usize);
+                let (i, j) = {
+                    let pair = &self.contacts.bands[band][k];
+                    (pair.i as usize, pair.j as usize)
+                };
+                if self.ball_partners[i] == 1 && self.ball_partners[j] == 1 {
+                    self.separate_balls(i, j);
+                }
             }
         }
         for k in 0..self.contacts.others.len() {
