@@ -5,7 +5,7 @@
 //! nothing once warm. Pairs come out in a fixed order (by cell, then index),
 //! which keeps the solver deterministic.
 
-use glam::DVec3;
+use glam::{DVec3, Vec4};
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Grid {
@@ -124,24 +124,28 @@ impl Grid {
     }
 
     /// Calls `f(k, l)` once for every unordered pair of slots (see
-    /// [`Grid::order`]) with `k` in a cell of layer `z` whose `positions`
-    /// (in slot order) are closer than `reach`, which must not exceed the
-    /// cell size. `l` lies in layer `z` or `z + 1`; `k < l` within a cell.
-    /// Over all layers, every close pair is seen once.
+    /// [`Grid::order`]) with `k` in a cell of layer `z` whose spheres
+    /// `spheres` (in slot order: centre in x, y, z and radius in w) overlap.
+    /// `l` lies in layer `z` or `z + 1`; `k < l` within a cell. Over all
+    /// layers, every overlapping pair whose centres are closer than the cell
+    /// size is seen once (pairs farther apart may be missed).
+    ///
+    /// The spheres are `f32`, half the memory of the positions to stream:
+    /// callers widen them by the rounding error and test the pairs found
+    /// exactly.
     pub fn for_each_close_pair_in_layer(
         &self,
-        positions: &[DVec3],
-        reach: f64,
+        spheres: &[Vec4],
         cz: usize,
         mut f: impl FnMut(usize, usize),
     ) {
-        let reach2 = reach * reach;
         let [nx, ny, nz] = self.dims;
         let mut close = |own: std::ops::Range<usize>, other: std::ops::Range<usize>| {
             for k in own {
-                let p = positions[k];
-                for (l, q) in positions[other.clone()].iter().enumerate() {
-                    if (*q - p).length_squared() < reach2 {
+                let p = spheres[k];
+                for (l, q) in spheres[other.clone()].iter().enumerate() {
+                    let reach = p.w + q.w;
+                    if (*q - p).truncate().length_squared() < reach * reach {
                         f(k, other.start + l);
                     }
                 }
@@ -225,9 +229,18 @@ mod tests {
         grid.rebuild(&pos, &alive);
         let mut found = Vec::new();
         let order = grid.order();
-        let sorted: Vec<DVec3> = order.iter().map(|&i| pos[i as usize]).collect();
+        // Every ball reaches a quarter of the way, ball 7 three quarters.
+        let reach_of = |i: usize| if i == 7 { 0.75 * reach } else { 0.25 * reach };
+        let spheres: Vec<Vec4> = order
+            .iter()
+            .map(|&i| {
+                pos[i as usize]
+                    .as_vec3()
+                    .extend(reach_of(i as usize) as f32)
+            })
+            .collect();
         for z in 0..grid.layer_count() {
-            grid.for_each_close_pair_in_layer(&sorted, reach, z, |k, l| {
+            grid.for_each_close_pair_in_layer(&spheres, z, |k, l| {
                 let (i, j) = (order[k] as usize, order[l] as usize);
                 found.push((i.min(j), i.max(j)));
             });
@@ -235,7 +248,8 @@ mod tests {
         let mut brute = Vec::new();
         for i in 0..n {
             for j in i + 1..n {
-                if alive[i] && alive[j] && pos[i].distance(pos[j]) < reach {
+                let within = if i == 7 || j == 7 { reach } else { 0.5 * reach };
+                if alive[i] && alive[j] && pos[i].distance(pos[j]) < within {
                     brute.push((i, j));
                 }
             }
@@ -245,6 +259,7 @@ mod tests {
         found.dedup();
         assert_eq!(before, found.len(), "a pair was reported twice");
         assert_eq!(found, brute);
-        assert!(!brute.is_empty());
+        assert!(brute.iter().any(|&(i, j)| i == 7 || j == 7));
+        assert!(brute.iter().any(|&(i, j)| i != 7 && j != 7));
     }
 }

@@ -19,6 +19,7 @@ use crate::room::Surface;
 use crate::tumbler::{Response, Tumbler, TumblerShape};
 use crate::warm::WarmStart;
 use glam::{DMat3, DVec3};
+use rayon::prelude::*;
 
 /// Surfaces closer than this (metres) at the end of a step count as touching.
 const TOUCHING: f64 = 1e-6;
@@ -510,12 +511,25 @@ pub(crate) fn solve_predict(
     crowd.reset(bodies.balls.len(), bodies.tumblers.len());
     let touching =
         |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
-    for (index, p) in contacts.pairs_mut().enumerate() {
-        p.prepare(bodies.balls);
-        p.impulse = 0.0;
-        p.kick = p.normal_velocity(bodies.balls) - p.approach;
-        crowd.add_ball(index, p.i as usize);
-        crowd.add_ball(index, p.j as usize);
+    let balls = &*bodies.balls;
+    let prepare = |band: &mut Vec<Pair>| {
+        for p in band.iter_mut() {
+            p.prepare(balls);
+            p.impulse = 0.0;
+            p.kick = p.normal_velocity(balls) - p.approach;
+        }
+    };
+    if contacts.pair_count() >= PARALLEL_PAIRS {
+        contacts.bands.par_iter_mut().for_each(prepare);
+    } else {
+        contacts.bands.iter_mut().for_each(prepare);
+    }
+    // Only a tumbler's contacts may bounce here, so only they ask the crowd.
+    if contacts.others.iter().any(Contact::involves_tumbler) {
+        for (index, p) in contacts.pairs().enumerate() {
+            crowd.add_ball(index, p.i as usize);
+            crowd.add_ball(index, p.j as usize);
+        }
     }
     let first_other = contacts.pair_count();
     for (k, c) in contacts.others.iter_mut().enumerate() {
@@ -589,19 +603,19 @@ fn apply_warm_start(
     ids: &[u32],
     stage: Stage,
 ) {
-    let balls = &mut *bodies.balls;
-    for p in contacts.bands.iter_mut().flatten() {
+    contacts.sweep(bodies.balls, |p, velocity, first, inv_mass| {
         if !stage.warm_starts(p.pushed, p.bounce) {
-            continue;
+            return;
         }
         let (i, j) = (p.i as usize, p.j as usize);
         let impulse = warm.pair(ids[i], ids[j]);
         if impulse > 0.0 {
             p.impulse = impulse;
-            balls.velocity[i] += p.normal * (impulse * balls.inv_mass[i]);
-            balls.velocity[j] -= p.normal * (impulse * balls.inv_mass[j]);
+            velocity[i - first] += p.normal * (impulse * inv_mass[i]);
+            velocity[j - first] -= p.normal * (impulse * inv_mass[j]);
         }
-    }
+    });
+    let balls = &mut *bodies.balls;
     for c in contacts.others.iter_mut() {
         if !stage.warm_starts(c.pushed, c.bounce) {
             continue;

@@ -26,7 +26,7 @@ use crate::rng::Rng;
 use crate::room::{Room, Surface};
 use crate::tumbler::{Grip, GroundedParams, Tumbler, TumblerShape};
 use crate::warm::WarmStart;
-use glam::{DMat3, DQuat, DVec3};
+use glam::{DMat3, DQuat, DVec3, Vec4};
 use rayon::prelude::*;
 
 /// Overlaps smaller than this are left alone (metres).
@@ -99,6 +99,9 @@ pub struct World {
     contact_inv: Vec<DMat3>,
     /// Per ball: bounced off a wall while moving this step (see `solve_project`).
     hit_wall: Vec<bool>,
+    /// Per ball: where it is and how far it looks for other balls this step
+    /// (see `collect_contacts`).
+    pair_spheres: Vec<Vec4>,
     /// Per ball: how many other balls it may touch this step (saturating).
     ball_partners: Vec<u8>,
     crowd: Crowd,
@@ -157,6 +160,7 @@ impl World {
             contacts: Contacts::default(),
             hit_wall: vec![false; b.count],
             ball_partners: Vec::new(),
+            pair_spheres: Vec::new(),
 
             crowd: Crowd::default(),
             warm: Default::default(),
@@ -605,14 +609,23 @@ impl World {
         let reach_cap = cfg.balls.radius;
         let contacts = &mut self.contacts;
 
-        // All balls share one radius.
-        let radius = cfg.balls.radius;
-        let far = 2.0 * radius + reach_cap + TOUCH_SLOP;
+        // Each ball's share of the pair test below: its radius and how far
+        // it could fly, so that resting balls look no further than touching;
+        // widened by more than `f32` rounds off in a room of any size.
+        let spheres = &mut self.pair_spheres;
+        spheres.clear();
+        spheres.extend((0..balls.len()).map(|i| {
+            let (p, v) = (balls.position[i], balls.velocity[i]);
+            let reach = balls.radius[i] + (2.0 * v.length() * dt).min(reach_cap) + TOUCH_SLOP;
+            let rounding = 1e-6 * (1.0 + p.abs().max_element());
+            p.as_vec3().extend((reach + rounding) as f32)
+        }));
+        let spheres = &self.pair_spheres;
         let grid = &self.grid;
         contacts.reset(grid.layer_count());
         grid.layer_slots(&mut contacts.layers);
         let find_pairs = |(z, band): (usize, &mut Vec<Pair>)| {
-            grid.for_each_close_pair_in_layer(&balls.position, far, z, |i, j| {
+            grid.for_each_close_pair_in_layer(spheres, z, |i, j| {
                 let d = balls.position[i] - balls.position[j];
                 let dist = d.length();
                 let gap = dist - balls.radius[i] - balls.radius[j];
