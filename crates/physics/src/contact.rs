@@ -207,7 +207,17 @@ fn sweep_alternate<F>(
     F: Fn(&mut Pair, &mut [DVec3], usize) + Sync,
 {
     if count >= 2 && parallel {
-        let half = count / 2;
+        // Split where the pairs, not the bands, are halved: piles fill some
+        // layers much more than others.
+        let pairs = |k: usize| bands[2 * k].len();
+        let total: usize = (0..count).map(pairs).sum();
+        let mut half = 0;
+        let mut left = 0;
+        while half + 1 < count && 2 * (left + pairs(half)) <= total {
+            left += pairs(half);
+            half += 1;
+        }
+        let half = half.max(1);
         let split = 2 * half;
         let (left_bands, right_bands) = bands.split_at_mut(split);
         let (left_v, right_v) = velocity.split_at_mut(layers[split] - layers[0]);
@@ -630,8 +640,8 @@ fn apply_warm_start(
     }
 }
 
-/// Keeps the impulses of `stage` for the next step's warm start (into a
-/// `warm` cleared for every ball number).
+/// Keeps the impulses of `stage` for the next step's warm start, into a
+/// `warm` begun for this step's slots.
 pub(crate) fn record_warm_start(
     contacts: &Contacts,
     warm: &mut WarmStart,
@@ -643,15 +653,11 @@ pub(crate) fn record_warm_start(
         Stage::Project => impulse,
     };
     for p in contacts.pairs() {
-        warm.record_pair(
-            ids[p.i as usize],
-            ids[p.j as usize],
-            of(p.pushed, p.impulse),
-        );
+        warm.record_pair(p.i as usize, p.j as usize, ids, of(p.pushed, p.impulse));
     }
     for c in &contacts.others {
         if let (BodyRef::Ball(i), BodyRef::Wall(s)) = (c.a, c.b) {
-            warm.record_wall(ids[i], s, of(c.pushed, c.impulse));
+            warm.record_wall(i, s, of(c.pushed, c.impulse));
         }
     }
 }

@@ -15,13 +15,19 @@
 use crate::room::Surface;
 
 /// Last step's normal impulses of ball pairs and ball-wall contacts.
+///
+/// They are kept in last step's slot order (see [`crate::broadphase::Grid::order`]),
+/// which is the order of space and changes little from one step to the next,
+/// so that looking them up walks memory nearly in order.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct WarmStart {
-    /// Per ball number: the higher-numbered partners it pushed, and how hard.
+    /// Per ball number: its slot last step (`NONE`: it had none).
+    slot_of: Vec<u32>,
+    /// Per slot: the balls of later slots it pushed (by number), and how hard.
     partners: Vec<[u32; WarmStart::PARTNERS]>,
     impulses: Vec<[f32; WarmStart::PARTNERS]>,
     count: Vec<u8>,
-    /// Per ball number and surface (in [`Surface::ALL`] order).
+    /// Per slot and surface (in [`Surface::ALL`] order).
     walls: Vec<[f32; 6]>,
 }
 
@@ -29,53 +35,68 @@ impl WarmStart {
     /// Equal spheres touch at most twelve others; a pair beyond that (only in
     /// a crushed pile) starts cold.
     const PARTNERS: usize = 12;
+    const NONE: u32 = u32::MAX;
 
-    /// Forgets everything and makes room for `balls` ball numbers.
-    pub fn clear(&mut self, balls: usize) {
-        self.partners.resize(balls, [0; WarmStart::PARTNERS]);
-        self.impulses.resize(balls, [0.0; WarmStart::PARTNERS]);
+    /// Forgets everything, ready to record a step whose slot `k` holds ball
+    /// number `ids[k]`, out of `balls` numbers.
+    pub fn begin(&mut self, ids: &[u32], balls: usize) {
+        self.slot_of.clear();
+        self.slot_of.resize(balls, WarmStart::NONE);
+        for (slot, &id) in ids.iter().enumerate() {
+            self.slot_of[id as usize] = slot as u32;
+        }
+        let slots = ids.len();
+        self.partners.resize(slots, [0; WarmStart::PARTNERS]);
+        self.impulses.resize(slots, [0.0; WarmStart::PARTNERS]);
         self.count.clear();
-        self.count.resize(balls, 0);
+        self.count.resize(slots, 0);
         self.walls.clear();
-        self.walls.resize(balls, [0.0; 6]);
+        self.walls.resize(slots, [0.0; 6]);
+    }
+
+    fn slot(&self, ball: u32) -> Option<usize> {
+        match self.slot_of.get(ball as usize) {
+            Some(&slot) if slot != WarmStart::NONE => Some(slot as usize),
+            _ => None,
+        }
     }
 
     /// Last step's impulse between balls number `a` and `b` (0 if none).
     pub fn pair(&self, a: u32, b: u32) -> f64 {
-        let (low, high) = if a < b { (a, b) } else { (b, a) };
-        let Some(&n) = self.count.get(low as usize) else {
+        let (Some(sa), Some(sb)) = (self.slot(a), self.slot(b)) else {
             return 0.0;
         };
-        let low = low as usize;
-        self.partners[low][..n as usize]
+        let (owner, partner) = if sa < sb { (sa, b) } else { (sb, a) };
+        let n = self.count[owner] as usize;
+        self.partners[owner][..n]
             .iter()
-            .position(|&p| p == high)
-            .map_or(0.0, |k| self.impulses[low][k] as f64)
+            .position(|&p| p == partner)
+            .map_or(0.0, |k| self.impulses[owner][k] as f64)
     }
 
     /// Last step's impulse between ball number `ball` and surface `s`.
     pub fn wall(&self, ball: u32, s: Surface) -> f64 {
-        self.walls
-            .get(ball as usize)
-            .map_or(0.0, |w| w[s.index()] as f64)
+        self.slot(ball)
+            .map_or(0.0, |slot| self.walls[slot][s.index()] as f64)
     }
 
-    pub fn record_pair(&mut self, a: u32, b: u32, impulse: f64) {
+    /// Records the impulse between the balls in slots `i` and `j`.
+    pub fn record_pair(&mut self, i: usize, j: usize, ids: &[u32], impulse: f64) {
         if impulse <= 0.0 {
             return;
         }
-        let (low, high) = if a < b { (a, b) } else { (b, a) };
-        let low = low as usize;
-        let n = self.count[low] as usize;
+        let (owner, partner) = if i < j { (i, ids[j]) } else { (j, ids[i]) };
+        let n = self.count[owner] as usize;
         if n < WarmStart::PARTNERS {
-            self.partners[low][n] = high;
-            self.impulses[low][n] = impulse as f32;
-            self.count[low] += 1;
+            self.partners[owner][n] = partner;
+            self.impulses[owner][n] = impulse as f32;
+            self.count[owner] += 1;
         }
     }
 
-    pub fn record_wall(&mut self, ball: u32, s: Surface, impulse: f64) {
-        self.walls[ball as usize][s.index()] = impulse.max(0.0) as f32;
+    /// Records the impulse between the ball in slot `i` and surface `s`.
+    pub fn record_wall(&mut self, i: usize, s: Surface, impulse: f64) {
+        self.walls[i][s.index()] = impulse.max(0.0) as f32;
     }
 }
 
@@ -84,28 +105,35 @@ mod tests {
     use super::*;
 
     #[test]
-    fn impulses_are_found_by_either_ball_and_forgotten_on_clear() {
+    fn impulses_are_found_by_ball_number_after_the_balls_change_slots() {
         let mut w = WarmStart::default();
-        w.clear(4);
-        w.record_pair(3, 1, 2.5);
-        w.record_pair(1, 2, 0.0);
-        w.record_wall(2, Surface::Floor, 4.0);
-        assert_eq!(w.pair(1, 3), 2.5);
+        // Slots 0..4 hold balls 3, 1, 0, 2; ball 4 is gone.
+        let ids = [3, 1, 0, 2];
+        w.begin(&ids, 5);
+        w.record_pair(0, 1, &ids, 2.5);
+        w.record_pair(3, 2, &ids, 1.5);
+        w.record_pair(1, 2, &ids, 0.0);
+        w.record_wall(3, Surface::Floor, 4.0);
         assert_eq!(w.pair(3, 1), 2.5);
-        assert_eq!(w.pair(1, 2), 0.0);
+        assert_eq!(w.pair(1, 3), 2.5);
+        assert_eq!(w.pair(0, 2), 1.5);
+        assert_eq!(w.pair(1, 0), 0.0);
+        assert_eq!(w.pair(4, 0), 0.0);
         assert_eq!(w.wall(2, Surface::Floor), 4.0);
         assert_eq!(w.wall(2, Surface::Ceiling), 0.0);
-        w.clear(4);
-        assert_eq!(w.pair(1, 3), 0.0);
+        assert_eq!(w.wall(4, Surface::Floor), 0.0);
+        w.begin(&ids, 5);
+        assert_eq!(w.pair(3, 1), 0.0);
         assert_eq!(w.wall(2, Surface::Floor), 0.0);
     }
 
     #[test]
     fn a_ball_keeps_at_most_twelve_partners() {
         let mut w = WarmStart::default();
-        w.clear(20);
+        let ids: Vec<u32> = (0..20).collect();
+        w.begin(&ids, 20);
         for b in 1..20 {
-            w.record_pair(0, b, b as f64);
+            w.record_pair(0, b, &ids, b as f64);
         }
         assert_eq!(w.pair(0, 12), 12.0);
         assert_eq!(w.pair(0, 13), 0.0);

@@ -246,7 +246,7 @@ impl World {
     /// from the world's random sequence, every ball alive and white again.
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
         // New balls under old numbers: last step's impulses mean nothing now.
-        self.warm.iter_mut().for_each(|w| w.clear(0));
+        self.warm.iter_mut().for_each(|w| w.begin(&[], 0));
         self.spawn_balls()
     }
 
@@ -570,7 +570,7 @@ impl World {
     fn record_warm_start(&mut self, stage: Stage) {
         // In sorted order `self.sorted` holds every ball number.
         let warm = &mut self.warm[stage as usize];
-        warm.clear(self.sorted.len());
+        warm.begin(self.grid.order(), self.sorted.len());
         record_warm_start(&self.contacts, warm, self.grid.order(), stage);
     }
 
