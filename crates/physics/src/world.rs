@@ -102,6 +102,8 @@ pub struct World {
     /// Per ball: where it is and how far it looks for other balls this step
     /// (see `collect_contacts`).
     pair_spheres: Vec<Vec4>,
+    /// Per ball: its speed at the start of the step.
+    speed: Vec<f64>,
     /// Per ball: how many other balls it may touch this step (saturating).
     ball_partners: Vec<u8>,
     crowd: Crowd,
@@ -161,6 +163,7 @@ impl World {
             hit_wall: vec![false; b.count],
             ball_partners: Vec::new(),
             pair_spheres: Vec::new(),
+            speed: Vec::new(),
 
             crowd: Crowd::default(),
             warm: Default::default(),
@@ -612,15 +615,17 @@ impl World {
         // Each ball's share of the pair test below: its radius and how far
         // it could fly, so that resting balls look no further than touching;
         // widened by more than `f32` rounds off in a room of any size.
-        let spheres = &mut self.pair_spheres;
+        let (spheres, speed) = (&mut self.pair_spheres, &mut self.speed);
+        speed.clear();
+        speed.extend(balls.velocity.iter().map(|v| v.length()));
         spheres.clear();
         spheres.extend((0..balls.len()).map(|i| {
-            let (p, v) = (balls.position[i], balls.velocity[i]);
-            let reach = balls.radius[i] + (2.0 * v.length() * dt).min(reach_cap) + TOUCH_SLOP;
+            let p = balls.position[i];
+            let reach = balls.radius[i] + (2.0 * speed[i] * dt).min(reach_cap) + TOUCH_SLOP;
             let rounding = 1e-6 * (1.0 + p.abs().max_element());
             p.as_vec3().extend((reach + rounding) as f32)
         }));
-        let spheres = &self.pair_spheres;
+        let (spheres, speed) = (&self.pair_spheres, &self.speed);
         let grid = &self.grid;
         contacts.reset(grid.layer_count());
         grid.layer_slots(&mut contacts.layers);
@@ -631,9 +636,9 @@ impl World {
                 let gap = dist - balls.radius[i] - balls.radius[j];
                 let relative = balls.velocity[i] - balls.velocity[j];
                 // Either ball may bounce off a wall within the step and come
-                // back at up to its speed: allow for that.
-                let speeds = balls.velocity[i].length() + balls.velocity[j].length();
-                let closing = relative.length().max(2.0 * speeds) * dt;
+                // back at up to its speed: allow for that (which covers their
+                // relative speed too).
+                let closing = 2.0 * (speed[i] + speed[j]) * dt;
                 if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
                     // Gravity moves both alike, so within the step they close
                     // along a straight line: take the normal at the moment of impact.
