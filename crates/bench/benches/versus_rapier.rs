@@ -123,6 +123,7 @@ fn main() {
             }
         };
         let our_run = run(&mut ours, &pit);
+        let retaken = ours.world().cold_retakes();
         drop(ours);
         let mut rapier = RapierPit::new(&pit);
         let name = rapier.name();
@@ -130,6 +131,10 @@ fn main() {
         let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
         print_row(n, "rolypoly", &our_run, ratio);
         print_row(n, &name, &rapier_run, 1.0);
+        println!(
+            "{:>7} rolypoly steps retaken without a warm start: {retaken}",
+            ""
+        );
     }
     match default_scene_with_fireball() {
         Ok(t) => println!(
