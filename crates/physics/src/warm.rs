@@ -29,6 +29,8 @@ pub(crate) struct WarmStart {
     count: Vec<u8>,
     /// Per slot and surface (in [`Surface::ALL`] order).
     walls: Vec<[f32; 6]>,
+    /// The share of each impulse that a lookup gives (see [`WarmStart::weaken`]).
+    strength: f64,
 }
 
 impl WarmStart {
@@ -52,6 +54,13 @@ impl WarmStart {
         self.count.resize(slots, 0);
         self.walls.clear();
         self.walls.resize(slots, [0.0; 6]);
+        self.strength = 1.0;
+    }
+
+    /// From now on, lookups give `share` of each impulse kept: a step that
+    /// a full warm start made overshoot is retaken with less of it.
+    pub fn weaken(&mut self, share: f64) {
+        self.strength = share;
     }
 
     fn slot(&self, ball: u32) -> Option<usize> {
@@ -71,13 +80,14 @@ impl WarmStart {
         self.partners[owner][..n]
             .iter()
             .position(|&p| p == partner)
-            .map_or(0.0, |k| self.impulses[owner][k] as f64)
+            .map_or(0.0, |k| self.strength * self.impulses[owner][k] as f64)
     }
 
     /// Last step's impulse between ball number `ball` and surface `s`.
     pub fn wall(&self, ball: u32, s: Surface) -> f64 {
-        self.slot(ball)
-            .map_or(0.0, |slot| self.walls[slot][s.index()] as f64)
+        self.slot(ball).map_or(0.0, |slot| {
+            self.strength * self.walls[slot][s.index()] as f64
+        })
     }
 
     /// Records the impulse between the balls in slots `i` and `j`.
@@ -122,6 +132,9 @@ mod tests {
         assert_eq!(w.wall(2, Surface::Floor), 4.0);
         assert_eq!(w.wall(2, Surface::Ceiling), 0.0);
         assert_eq!(w.wall(4, Surface::Floor), 0.0);
+        w.weaken(0.5);
+        assert_eq!(w.pair(3, 1), 1.25);
+        assert_eq!(w.wall(2, Surface::Floor), 2.0);
         w.begin(&ids, 5);
         assert_eq!(w.pair(3, 1), 0.0);
         assert_eq!(w.wall(2, Surface::Floor), 0.0);

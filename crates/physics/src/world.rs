@@ -107,8 +107,10 @@ pub struct World {
     /// Per ball: how many other balls it may touch this step (saturating).
     ball_partners: Vec<u8>,
     crowd: Crowd,
-    /// Last step's impulses of each solver stage, by ball number (see [`crate::warm`]).
+    /// Last step's impulses of each solver stage, by ball number (see [`crate::warm`]),
+    /// and this step's, which take their place once the step is done.
     warm: [WarmStart; 2],
+    warm_next: [WarmStart; 2],
     /// The state before a warm-started step, to retake it cold if it made energy.
     before_step: (Balls, Vec<Tumbler>),
     cold_retakes: u64,
@@ -167,6 +169,7 @@ impl World {
 
             crowd: Crowd::default(),
             warm: Default::default(),
+            warm_next: Default::default(),
             before_step: Default::default(),
             cold_retakes: 0,
             room,
@@ -249,7 +252,9 @@ impl World {
     /// from the world's random sequence, every ball alive and white again.
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
         // New balls under old numbers: last step's impulses mean nothing now.
-        self.warm.iter_mut().for_each(|w| w.begin(&[], 0));
+        for w in self.warm.iter_mut().chain(&mut self.warm_next) {
+            w.begin(&[], 0);
+        }
         self.spawn_balls()
     }
 
@@ -430,7 +435,8 @@ impl World {
     /// [`crate::warm`]). Should that make energy (only the hand may feed
     /// some in), the excess is taken from the balls' motion, all slowed
     /// alike; if they have too little, the step is retaken from its start
-    /// without a warm start. Either way energy never grows.
+    /// with half the warm start, and then without. Either way energy never
+    /// grows.
     pub fn step(&mut self) {
         let dt = self.config.solver.dt;
         if self.grabbed().is_some() {
@@ -441,15 +447,22 @@ impl World {
             self.before_step.1.clone_from(&self.tumblers);
             let first_event = self.events.len();
             self.advance(dt, true);
-            let after = self.energy().total();
-            if after > before && !self.take_kinetic_energy(after - before, before) {
+            // Retaken with half the warm start, then none: a cold step alone
+            // would let a deep pile sag, and the next warm start overshoot.
+            for share in [0.5, 0.0] {
+                let after = self.energy().total();
+                if after <= before || self.take_kinetic_energy(after - before, before) {
+                    break;
+                }
                 self.balls.clone_from(&self.before_step.0);
                 self.tumblers.clone_from(&self.before_step.1);
                 self.events.truncate(first_event);
+                self.warm.iter_mut().for_each(|w| w.weaken(share));
                 self.cold_retakes += 1;
-                self.advance(dt, false);
+                self.advance(dt, share > 0.0);
             }
         }
+        std::mem::swap(&mut self.warm, &mut self.warm_next);
         self.move_fireball(dt);
         self.steps += 1;
         self.time = self.steps as f64 * dt;
@@ -572,7 +585,7 @@ impl World {
 
     fn record_warm_start(&mut self, stage: Stage) {
         // In sorted order `self.sorted` holds every ball number.
-        let warm = &mut self.warm[stage as usize];
+        let warm = &mut self.warm_next[stage as usize];
         warm.begin(self.grid.order(), self.sorted.len());
         record_warm_start(&self.contacts, warm, self.grid.order(), stage);
     }
