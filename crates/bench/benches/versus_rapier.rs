@@ -123,7 +123,7 @@ fn main() {
             }
         };
         let our_run = run(&mut ours, &pit);
-        let retaken = ours.world().cold_retakes();
+        let retaken = ours.world().retakes();
         drop(ours);
         let mut rapier = RapierPit::new(&pit);
         let name = rapier.name();
@@ -132,7 +132,7 @@ fn main() {
         print_row(n, "rolypoly", &our_run, ratio);
         print_row(n, &name, &rapier_run, 1.0);
         println!(
-            "{:>7} rolypoly steps retaken without a warm start: {retaken}",
+            "{:>7} rolypoly steps retaken with less warm start: {retaken}",
             ""
         );
     }

@@ -113,7 +113,7 @@ pub struct World {
     warm_next: [WarmStart; 2],
     /// The state before a warm-started step, to retake it cold if it made energy.
     before_step: (Balls, Vec<Tumbler>),
-    cold_retakes: u64,
+    retakes: u64,
 }
 
 impl World {
@@ -171,7 +171,7 @@ impl World {
             warm: Default::default(),
             warm_next: Default::default(),
             before_step: Default::default(),
-            cold_retakes: 0,
+            retakes: 0,
             room,
             shape,
             config,
@@ -458,7 +458,7 @@ impl World {
                 self.tumblers.clone_from(&self.before_step.1);
                 self.events.truncate(first_event);
                 self.warm.iter_mut().for_each(|w| w.weaken(share));
-                self.cold_retakes += 1;
+                self.retakes += 1;
                 self.advance(dt, share > 0.0);
             }
         }
@@ -484,9 +484,10 @@ impl World {
         self.energy().total() <= limit
     }
 
-    /// How many steps were retaken without a warm start (see [`World::step`]).
-    pub fn cold_retakes(&self) -> u64 {
-        self.cold_retakes
+    /// How many times a step was retaken with less of its warm start (see
+    /// [`World::step`]).
+    pub fn retakes(&self) -> u64 {
+        self.retakes
     }
 
     /// One step of the balls and tumblers, with or without a warm start.
