@@ -111,7 +111,7 @@ pub struct World {
     /// and this step's, which take their place once the step is done.
     warm: [WarmStart; 2],
     warm_next: [WarmStart; 2],
-    /// The state before a warm-started step, to retake it cold if it made energy.
+    /// The state before a step, to retake it if its warm start made energy.
     before_step: (Balls, Vec<Tumbler>),
     retakes: u64,
 }
@@ -166,7 +166,6 @@ impl World {
             ball_partners: Vec::new(),
             pair_spheres: Vec::new(),
             speed: Vec::new(),
-
             crowd: Crowd::default(),
             warm: Default::default(),
             warm_next: Default::default(),
