@@ -437,6 +437,18 @@ impl World {
     /// with half the warm start, and then without. Either way energy never
     /// grows.
     pub fn step(&mut self) {
+        if self.balls.len() >= PARALLEL_BALLS {
+            // The whole step runs on a worker thread: its forty-odd parallel
+            // stages then hand work to the other workers, which are awake,
+            // instead of waking the caller's thread after each one.
+            rayon::scope(|_| self.step_here());
+        } else {
+            self.step_here();
+        }
+    }
+
+    /// [`World::step`], on the current thread.
+    fn step_here(&mut self) {
         let dt = self.config.solver.dt;
         if self.grabbed().is_some() {
             self.advance(dt, true);
