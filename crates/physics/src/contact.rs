@@ -149,14 +149,24 @@ impl Pair {
         let (i, j) = (self.i as usize, self.j as usize);
         let (vi, vj) = (i - first, j - first);
         let vn = (velocity[vi] - velocity[vj]).dot(self.normal);
-        let total = (self.impulse + self.mass * (target - vn)).max(0.0);
-        let delta = total - self.impulse;
+        let delta = accumulate(&mut self.impulse, self.mass, vn, target);
         if delta != 0.0 {
-            self.impulse = total;
             velocity[vi] += self.normal * (delta * inv_mass[i]);
             velocity[vj] -= self.normal * (delta * inv_mass[j]);
         }
     }
+}
+
+/// The Gauss-Seidel update of every normal contact: the impulse that drives
+/// the relative normal velocity `vn` to at least `target`, added to the
+/// contact's `impulse` so far and kept non-negative (contacts only push).
+/// Returns the change, which the caller applies to the bodies.
+#[inline]
+fn accumulate(impulse: &mut f64, mass: f64, vn: f64, target: f64) -> f64 {
+    let total = (*impulse + mass * (target - vn)).max(0.0);
+    let delta = total - *impulse;
+    *impulse = total;
+    delta
 }
 
 /// Below this many ball pairs a stage runs on one thread: handing work to
@@ -257,7 +267,10 @@ pub(crate) struct Contacts {
     pub layers: Vec<usize>,
     /// Number of the first pair of each band, and the pair count.
     band_start: Vec<usize>,
+    /// Every other contact; the first `ball_walls` join a ball to a wall, in
+    /// slot order, and the rest involve a tumbler.
     pub others: Vec<Contact>,
+    pub ball_walls: usize,
 }
 
 impl Contacts {
@@ -266,6 +279,7 @@ impl Contacts {
         self.bands.resize_with(layers, Vec::new);
         self.bands.iter_mut().for_each(Vec::clear);
         self.others.clear();
+        self.ball_walls = 0;
     }
 
     /// Numbers the pairs once the bands are filled.
@@ -302,6 +316,39 @@ impl Contacts {
             self.pair(index).normal
         } else {
             self.others[index - pairs].normal
+        }
+    }
+
+    /// Calls `solve(contact, ball)` for every ball-wall contact, then
+    /// `others(contact, bodies)` for every contact with a tumbler.
+    ///
+    /// A ball-wall contact moves its ball alone, so different balls' contacts
+    /// are solved side by side; each ball's own in their order, which keeps
+    /// the result the same on any number of threads.
+    fn sweep_others<F, G>(&mut self, bodies: &mut Bodies, solve: F, mut others: G)
+    where
+        F: Fn(&mut Contact, BallMotion) + Sync,
+        G: FnMut(&mut Contact, &mut Bodies),
+    {
+        let (walls, rest) = self.others.split_at_mut(self.ball_walls);
+        let balls = &mut *bodies.balls;
+        let parallel = walls.len() >= PARALLEL_BALL_WALLS;
+        let view = BallSlices {
+            velocity: &mut balls.velocity,
+            spin: &mut balls.spin,
+            first: 0,
+        };
+        sweep_ball_walls(
+            walls,
+            view,
+            &balls.radius,
+            &balls.mass,
+            &balls.inv_mass,
+            parallel,
+            &solve,
+        );
+        for c in rest {
+            others(c, bodies);
         }
     }
 
@@ -391,36 +438,126 @@ impl Bodies<'_> {
     /// least `target`, keeping the accumulated impulse non-negative.
     fn solve_normal(&mut self, c: &mut Contact, target: f64) {
         let vn = self.normal_velocity(c);
-        let total = (c.impulse + c.mass * (target - vn)).max(0.0);
-        let delta = total - c.impulse;
+        let delta = accumulate(&mut c.impulse, c.mass, vn, target);
         if delta != 0.0 {
-            c.impulse = total;
             self.push(c.a, c.normal, &c.response_a, delta);
             self.push(c.b, c.normal, &c.response_b, -delta);
         }
     }
+}
 
-    /// Coulomb friction between a ball and a wall, at the contact point, so
-    /// that a sliding ball starts to roll.
+/// One ball's motion and build, for a contact that moves that ball alone.
+pub(crate) struct BallMotion<'a> {
+    pub velocity: &'a mut DVec3,
+    pub spin: &'a mut DVec3,
+    pub radius: f64,
+    pub mass: f64,
+    pub inv_mass: f64,
+}
+
+impl BallMotion<'_> {
+    /// [`Bodies::solve_normal`] for a contact of this ball with a wall.
+    #[inline]
+    fn solve_normal(&mut self, c: &mut Contact, target: f64) {
+        let delta = accumulate(&mut c.impulse, c.mass, self.velocity.dot(c.normal), target);
+        if delta != 0.0 {
+            *self.velocity += c.normal * (delta * self.inv_mass);
+        }
+    }
+
+    /// Coulomb friction between the ball and a wall, at the contact point,
+    /// so that a sliding ball starts to roll.
     fn solve_friction(&mut self, c: &mut Contact) {
-        let BodyRef::Ball(i) = c.a else { return };
         let n = c.normal;
-        let r = self.balls.radius[i];
-        let m = self.balls.mass[i];
-        let inertia = self.balls.inertia(i);
+        let (r, m) = (self.radius, self.mass);
+        let inertia = 0.4 * m * r * r;
         let arm = -r * n;
         let (t1, t2) = n.any_orthonormal_pair();
         let limit = c.friction * c.impulse;
         // Solid sphere: tangential effective mass is 2m/7.
         let tangent_mass = 1.0 / (1.0 / m + r * r / inertia);
         for (k, t) in [t1, t2].into_iter().enumerate() {
-            let slip = self.balls.velocity[i] + self.balls.spin[i].cross(arm);
+            let slip = *self.velocity + self.spin.cross(arm);
             let total = (c.friction_impulse[k] - tangent_mass * slip.dot(t)).clamp(-limit, limit);
             let delta = total - c.friction_impulse[k];
             c.friction_impulse[k] = total;
-            self.balls.velocity[i] += t * (delta / m);
-            self.balls.spin[i] += arm.cross(t * delta) / inertia;
+            *self.velocity += t * (delta / m);
+            *self.spin += arm.cross(t * delta) / inertia;
         }
+    }
+}
+
+/// Below this many ball-wall contacts they are solved on one thread (the
+/// crowded pit of the thread test has more).
+const PARALLEL_BALL_WALLS: usize = 512;
+
+/// The velocities and spins of the balls from slot `first` on.
+struct BallSlices<'a> {
+    velocity: &'a mut [DVec3],
+    spin: &'a mut [DVec3],
+    first: usize,
+}
+
+/// The ball a ball-wall contact moves.
+fn ball_of(c: &Contact) -> Option<usize> {
+    match c.a {
+        BodyRef::Ball(i) => Some(i),
+        _ => None,
+    }
+}
+
+/// Solves ball-wall contacts (in slot order) whose balls lie in `balls`,
+/// halving the work across threads between two balls.
+fn sweep_ball_walls<F>(
+    walls: &mut [Contact],
+    balls: BallSlices,
+    radius: &[f64],
+    mass: &[f64],
+    inv_mass: &[f64],
+    parallel: bool,
+    solve: &F,
+) where
+    F: Fn(&mut Contact, BallMotion) + Sync,
+{
+    if parallel && walls.len() >= PARALLEL_BALL_WALLS / 2 {
+        let mut half = walls.len() / 2;
+        while half < walls.len() && ball_of(&walls[half]) == ball_of(&walls[half - 1]) {
+            half += 1;
+        }
+        if let Some(split) = walls.get(half).and_then(ball_of) {
+            let (left, right) = walls.split_at_mut(half);
+            let (lv, rv) = balls.velocity.split_at_mut(split - balls.first);
+            let (ls, rs) = balls.spin.split_at_mut(split - balls.first);
+            let (left_balls, right_balls) = (
+                BallSlices {
+                    velocity: lv,
+                    spin: ls,
+                    first: balls.first,
+                },
+                BallSlices {
+                    velocity: rv,
+                    spin: rs,
+                    first: split,
+                },
+            );
+            rayon::join(
+                || sweep_ball_walls(left, left_balls, radius, mass, inv_mass, parallel, solve),
+                || sweep_ball_walls(right, right_balls, radius, mass, inv_mass, parallel, solve),
+            );
+            return;
+        }
+    }
+    for c in walls {
+        let Some(i) = ball_of(c) else { continue };
+        let k = i - balls.first;
+        let ball = BallMotion {
+            velocity: &mut balls.velocity[k],
+            spin: &mut balls.spin[k],
+            radius: radius[i],
+            mass: mass[i],
+            inv_mass: inv_mass[i],
+        };
+        solve(c, ball);
     }
 }
 
@@ -568,19 +705,25 @@ pub(crate) fn solve_predict(
             let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
             p.solve(velocity, first, inv_mass, target);
         });
-        for c in contacts.others.iter_mut() {
-            let target = if c.bounce {
+        let target = |c: &Contact| {
+            if c.bounce {
                 c.kick - c.restitution * c.approach
             } else if c.gap > 0.0 {
                 -c.gap / dt
             } else {
                 0.0
-            };
-            bodies.solve_normal(c, target);
-            if c.friction > 0.0 {
-                bodies.solve_friction(c);
             }
-        }
+        };
+        contacts.sweep_others(
+            bodies,
+            |c, mut ball| {
+                ball.solve_normal(c, target(c));
+                if c.friction > 0.0 {
+                    ball.solve_friction(c);
+                }
+            },
+            |c, bodies| bodies.solve_normal(c, target(c)),
+        );
     }
     for p in contacts.pairs_mut() {
         p.pushed = p.impulse;
@@ -743,13 +886,25 @@ pub(crate) fn solve_project(
                 p.solve(velocity, first, inv_mass, target);
             }
         });
-        for c in contacts.others.iter_mut().filter(|c| c.pushed > 0.0) {
-            let target = if c.bounce {
+        let target = |c: &Contact| {
+            if c.bounce {
                 -c.restitution * c.approach
             } else {
                 0.0
-            };
-            bodies.solve_normal(c, target);
-        }
+            }
+        };
+        contacts.sweep_others(
+            bodies,
+            |c, mut ball| {
+                if c.pushed > 0.0 {
+                    ball.solve_normal(c, target(c));
+                }
+            },
+            |c, bodies| {
+                if c.pushed > 0.0 {
+                    bodies.solve_normal(c, target(c));
+                }
+            },
+        );
     }
 }

@@ -726,6 +726,7 @@ impl World {
                 }
             }
         }
+        contacts.ball_walls = contacts.others.len();
 
         // Balls against tumblers: the grid narrows to balls near the bounding
         // sphere, then the six spheres give the contact (P7).
