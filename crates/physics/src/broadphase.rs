@@ -16,6 +16,12 @@ pub(crate) struct Grid {
     cell_start: Vec<u32>,
     sorted: Vec<u32>,
     ball_cell: Vec<u32>,
+    /// Per ball: its slot in `sorted` (`NO_SLOT` if it is not alive).
+    ball_slot: Vec<u32>,
+}
+
+impl Grid {
+    pub const NO_SLOT: u32 = u32::MAX;
 }
 
 /// Cells are never made so small that the grid would dwarf the balls.
@@ -44,6 +50,7 @@ impl Grid {
             cell_start: vec![0; dims[0] * dims[1] * dims[2] + 1],
             sorted: Vec::new(),
             ball_cell: Vec::new(),
+            ball_slot: Vec::new(),
         }
     }
 
@@ -85,10 +92,14 @@ impl Grid {
         // and restoring it afterwards.
         let n_cells = self.cell_start.len() - 1;
         let mut cursor = std::mem::take(&mut self.cell_start);
+        self.ball_slot.clear();
         for (i, &c) in self.ball_cell.iter().enumerate() {
-            if c != u32::MAX {
+            if c == u32::MAX {
+                self.ball_slot.push(Grid::NO_SLOT);
+            } else {
                 let slot = &mut cursor[c as usize];
                 self.sorted[*slot as usize] = i as u32;
+                self.ball_slot.push(*slot);
                 *slot += 1;
             }
         }
@@ -104,6 +115,12 @@ impl Grid {
     /// `order()[k]`. Cells are contiguous runs of slots.
     pub fn order(&self) -> &[u32] {
         &self.sorted
+    }
+
+    /// The inverse of [`Grid::order`]: per ball, its slot (`NO_SLOT` if it
+    /// is not alive).
+    pub fn ball_slots(&self) -> &[u32] {
+        &self.ball_slot
     }
 
     fn slots(&self, cell: usize) -> std::ops::Range<usize> {

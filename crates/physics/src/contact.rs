@@ -171,7 +171,7 @@ fn accumulate(impulse: &mut f64, mass: f64, vn: f64, target: f64) -> f64 {
 
 /// Below this many ball pairs a stage runs on one thread: handing work to
 /// other threads costs more than it saves. The result is the same either way.
-const PARALLEL_PAIRS: usize = 4096;
+pub(crate) const PARALLEL_PAIRS: usize = 4096;
 
 /// One Gauss-Seidel sweep over every band of pairs, `solve(pair, velocity,
 /// first)` for each, in an order fixed by the bands alone.
@@ -330,9 +330,10 @@ impl Contacts {
         F: Fn(&mut Contact, BallMotion) + Sync,
         G: FnMut(&mut Contact, &mut Bodies),
     {
+        let parallel =
+            self.ball_walls >= PARALLEL_BALL_WALLS && self.pair_count() >= PARALLEL_PAIRS;
         let (walls, rest) = self.others.split_at_mut(self.ball_walls);
         let balls = &mut *bodies.balls;
-        let parallel = walls.len() >= PARALLEL_BALL_WALLS;
         let view = BallSlices {
             velocity: &mut balls.velocity,
             spin: &mut balls.spin,
@@ -487,8 +488,8 @@ impl BallMotion<'_> {
     }
 }
 
-/// Below this many ball-wall contacts they are solved on one thread (the
-/// crowded pit of the thread test has more).
+/// Below this many ball-wall contacts, or [`PARALLEL_PAIRS`] pairs, they are
+/// solved on one thread (the crowded pit of the thread test has more).
 const PARALLEL_BALL_WALLS: usize = 512;
 
 /// The velocities and spins of the balls from slot `first` on.

@@ -17,8 +17,8 @@ use crate::broadphase::Grid;
 use crate::ccd::first_impact;
 use crate::config::{Rgb, WorldConfig};
 use crate::contact::{
-    Bodies, BodyRef, Contact, Contacts, Crowd, Pair, Stage, record_warm_start, solve_predict,
-    solve_project,
+    Bodies, BodyRef, Contact, Contacts, Crowd, PARALLEL_PAIRS, Pair, Stage, record_warm_start,
+    solve_predict, solve_project,
 };
 use crate::events::{Event, EventKind};
 use crate::fireball::Fireball;
@@ -437,10 +437,10 @@ impl World {
     /// with half the warm start, and then without. Either way energy never
     /// grows.
     pub fn step(&mut self) {
-        if self.balls.len() >= PARALLEL_BALLS {
-            // The whole step runs on a worker thread: its forty-odd parallel
-            // stages then hand work to the other workers, which are awake,
-            // instead of waking the caller's thread after each one.
+        // A crowded world's step runs on a worker thread: its forty-odd
+        // parallel stages then hand work to the other workers, which are
+        // awake, instead of waking the caller's thread after each one.
+        if self.balls.len() >= PARALLEL_BALLS || self.contacts.pair_count() >= PARALLEL_PAIRS {
             rayon::scope(|_| self.step_here());
         } else {
             self.step_here();
@@ -561,9 +561,13 @@ impl World {
     fn enter_sorted_order(&mut self) {
         let order = self.grid.order();
         let (from, to) = (&self.balls, &mut self.sorted);
-        fn gather<T: Copy>(to: &mut Vec<T>, from: &[T], order: &[u32]) {
+        fn gather<T: Copy + Send + Sync>(to: &mut Vec<T>, from: &[T], order: &[u32]) {
             to.clear();
-            to.extend(order.iter().map(|&id| from[id as usize]));
+            if order.len() >= PARALLEL_BALLS {
+                to.par_extend(order.par_iter().map(|&id| from[id as usize]));
+            } else {
+                to.extend(order.iter().map(|&id| from[id as usize]));
+            }
         }
         gather(&mut to.position, &from.position, order);
         gather(&mut to.velocity, &from.velocity, order);
@@ -581,15 +585,25 @@ impl World {
     /// balls named by the events of this step (from `first_event` on).
     fn leave_sorted_order(&mut self, first_event: usize) {
         std::mem::swap(&mut self.balls, &mut self.sorted);
-        let order = self.grid.order();
         let (from, to) = (&self.sorted, &mut self.balls);
-        for (slot, &id) in order.iter().enumerate() {
-            let id = id as usize;
-            to.position[id] = from.position[slot];
-            to.velocity[id] = from.velocity[slot];
-            to.spin[id] = from.spin[slot];
-            to.tint[id] = from.tint[slot];
+        let slots = self.grid.ball_slots();
+        fn scatter<T: Copy + Send + Sync>(to: &mut [T], from: &[T], slots: &[u32]) {
+            let put = |(id, x): (usize, &mut T)| {
+                if let Some(&slot) = slots.get(id).filter(|&&s| s != Grid::NO_SLOT) {
+                    *x = from[slot as usize];
+                }
+            };
+            if to.len() >= PARALLEL_BALLS {
+                to.par_iter_mut().enumerate().for_each(put);
+            } else {
+                to.iter_mut().enumerate().for_each(put);
+            }
         }
+        scatter(&mut to.position, &from.position, slots);
+        scatter(&mut to.velocity, &from.velocity, slots);
+        scatter(&mut to.spin, &from.spin, slots);
+        scatter(&mut to.tint, &from.tint, slots);
+        let order = self.grid.order();
         for e in &mut self.events[first_event..] {
             e.kind = e.kind.renumber_balls(|slot| order[slot] as usize);
         }
@@ -832,8 +846,16 @@ impl World {
         let SolverParts {
             bodies, contacts, ..
         } = self.solver_parts(None);
-        for p in contacts.bands.iter_mut().flatten() {
-            p.approach = p.normal_velocity(bodies.balls);
+        let balls = &*bodies.balls;
+        let approach = |band: &mut Vec<Pair>| {
+            for p in band {
+                p.approach = p.normal_velocity(balls);
+            }
+        };
+        if balls.len() >= PARALLEL_BALLS {
+            contacts.bands.par_iter_mut().for_each(approach);
+        } else {
+            contacts.bands.iter_mut().for_each(approach);
         }
         for c in contacts.others.iter_mut() {
             c.approach = bodies.normal_velocity(c);
