@@ -1,7 +1,8 @@
 //! The rolypoly engine against Rapier on the same ball pit, in one process.
 //!
 //! `cargo bench -p rolypoly-bench` runs pits of 1k, 10k and 100k balls;
-//! `cargo bench -p rolypoly-bench -- 1000 5000` picks the sizes. Each pit is
+//! `cargo bench -p rolypoly-bench -- 1000 5000` picks the sizes and
+//! `-- 10000 10s` the simulated time too (3 s unless told). Each pit is
 //! simulated for the same time by both engines from the same start; only
 //! `step` calls are timed. Quality is measured every half second (untimed)
 //! and at the end.
@@ -13,7 +14,7 @@ use rolypoly_bench::rapier_pit::RapierPit;
 use rolypoly_physics::{World, WorldConfig};
 use std::time::Instant;
 
-/// Simulated time of every pit run (s).
+/// Simulated time of every pit run unless an argument such as `10s` says otherwise.
 const SECONDS: f64 = 3.0;
 
 struct Run {
@@ -24,8 +25,8 @@ struct Run {
     end: Quality,
 }
 
-fn run(engine: &mut dyn PitEngine, pit: &Pit) -> Run {
-    let steps = (SECONDS / pit.dt).round() as usize;
+fn run(engine: &mut dyn PitEngine, pit: &Pit, seconds: f64) -> Run {
+    let steps = ((seconds / pit.dt).round() as usize).max(1);
     let sample_every = (0.5 / pit.dt).round() as usize;
     let (mut positions, mut velocities) = (Vec::new(), Vec::new());
     let mut worst = Quality::default();
@@ -49,7 +50,7 @@ fn run(engine: &mut dyn PitEngine, pit: &Pit) -> Run {
 
 fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
     println!(
-        "{:>7} {:<14} {:>9.1} {:>13.3e} {:>7.2} {:>13.2} {:>8} {:>12.3} {:>8}",
+        "{:>7} {:<14} {:>9.1} {:>13.3e} {:>7.2} {:>13.2} {:>8} {:>12.3} {:>8} {:>8.1}%",
         balls,
         name,
         r.steps_per_second,
@@ -59,6 +60,7 @@ fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
         r.worst.escapes,
         r.end.kinetic_energy,
         if r.end.at_rest() { "yes" } else { "no" },
+        100.0 * r.end.resting as f64 / balls as f64,
     );
 }
 
@@ -80,9 +82,23 @@ fn default_scene_with_fireball() -> Result<f64, String> {
 }
 
 fn main() {
-    let sizes: Vec<usize> = std::env::args()
-        .skip(1)
-        .filter(|a| !a.starts_with('-'))
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let seconds = match args
+        .iter()
+        .find(|a| a.ends_with('s') && !a.starts_with('-'))
+    {
+        None => SECONDS,
+        Some(a) => match a.trim_end_matches('s').parse::<f64>() {
+            Ok(t) if t.is_finite() && t > 0.0 => t,
+            _ => {
+                eprintln!("versus_rapier: '{a}' is not a positive number of seconds");
+                std::process::exit(2);
+            }
+        },
+    };
+    let sizes: Vec<usize> = args
+        .iter()
+        .filter(|a| !a.starts_with('-') && !a.ends_with('s'))
         .map(|a| match a.parse() {
             Ok(n) => n,
             Err(_) => {
@@ -98,11 +114,16 @@ fn main() {
     };
     println!(
         "pit: balls of radius 0.1 m, mass 1 kg, restitution 0.8, wall friction 0.5, \
-         dt 1/60 s, {SECONDS} s simulated; threads: {}",
+         dt 1/60 s, {seconds} s simulated; threads: {}",
         rayon_threads()
     );
     println!(
-        "{:>7} {:<14} {:>9} {:>13} {:>7} {:>13} {:>8} {:>12} {:>8}",
+        "overlap: deepest over the run; at rest: every ball slower than {} cm/s at the end; \
+         resting: the share of balls that are",
+        100.0 * rolypoly_bench::quality::REST_SPEED
+    );
+    println!(
+        "{:>7} {:<14} {:>9} {:>13} {:>7} {:>13} {:>8} {:>12} {:>8} {:>9}",
         "balls",
         "engine",
         "steps/s",
@@ -111,7 +132,8 @@ fn main() {
         "overlap (mm)",
         "escapes",
         "KE end (J)",
-        "at rest"
+        "at rest",
+        "resting"
     );
     for n in sizes {
         let pit = Pit::new(n, 7);
@@ -122,12 +144,12 @@ fn main() {
                 std::process::exit(1);
             }
         };
-        let our_run = run(&mut ours, &pit);
+        let our_run = run(&mut ours, &pit, seconds);
         let retaken = ours.world().retakes();
         drop(ours);
         let mut rapier = RapierPit::new(&pit);
         let name = rapier.name();
-        let rapier_run = run(&mut rapier, &pit);
+        let rapier_run = run(&mut rapier, &pit, seconds);
         let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
         print_row(n, "rolypoly", &our_run, ratio);
         print_row(n, &name, &rapier_run, 1.0);

@@ -19,6 +19,8 @@ pub struct Quality {
     pub kinetic_energy: f64,
     /// The fastest ball's speed (m/s).
     pub max_speed: f64,
+    /// Balls inside the box slower than [`REST_SPEED`].
+    pub resting: usize,
 }
 
 impl Quality {
@@ -34,6 +36,7 @@ impl Quality {
             escapes: self.escapes.max(other.escapes),
             kinetic_energy: self.kinetic_energy.max(other.kinetic_energy),
             max_speed: self.max_speed.max(other.max_speed),
+            resting: self.resting.min(other.resting),
         }
     }
 }
@@ -54,6 +57,7 @@ pub fn measure(pit: &Pit, positions: &[DVec3], velocities: &[DVec3]) -> Quality 
         q.max_penetration = q.max_penetration.max(into_wall.max_element());
         q.kinetic_energy += 0.5 * pit.mass * v.length_squared();
         q.max_speed = q.max_speed.max(v.length());
+        q.resting += usize::from(v.length() < REST_SPEED);
     }
     // Pairs of balls inside: hash the centres into cells one diameter wide,
     // so every overlapping pair shares a cell or sits in neighbouring ones.
@@ -114,6 +118,7 @@ mod tests {
         assert_eq!(q.escapes, 0);
         assert!((q.kinetic_energy - 0.5 * (0.0001 + 4.0)).abs() < 1e-12);
         assert!(!q.at_rest());
+        assert_eq!(q.resting, 3);
     }
 
     #[test]
@@ -128,6 +133,7 @@ mod tests {
         let q = measure(&pit, &positions, &[DVec3::ZERO; 4]);
         assert_eq!(q.escapes, 3);
         assert!(q.at_rest());
+        assert_eq!(q.resting, 1, "escaped balls are not counted");
         assert!(q.max_penetration <= 1e-12);
     }
 }
