@@ -79,7 +79,7 @@ impl Balls {
 
     /// Moment of inertia of ball `i` (uniform solid sphere).
     pub fn inertia(&self, i: usize) -> f64 {
-        0.4 * self.mass[i] * self.radius[i] * self.radius[i]
+        sphere_inertia(self.mass[i], self.radius[i])
     }
 
     pub fn kinetic_energy(&self, i: usize) -> f64 {
@@ -99,4 +99,9 @@ impl Balls {
         self.mass[i] = mass;
         self.inv_mass[i] = 1.0 / mass;
     }
+}
+
+/// Moment of inertia of a uniform solid sphere about its centre.
+pub(crate) fn sphere_inertia(mass: f64, radius: f64) -> f64 {
+    0.4 * mass * radius * radius
 }

@@ -14,7 +14,7 @@
 //! in stage 1 already (see [`solve_predict`]). Every other impulse stops an
 //! approach and nothing more, so no stage can add energy.
 
-use crate::balls::Balls;
+use crate::balls::{Balls, sphere_inertia};
 use crate::room::Surface;
 use crate::tumbler::{Response, Tumbler, TumblerShape};
 use crate::warm::WarmStart;
@@ -339,15 +339,12 @@ impl Contacts {
             spin: &mut balls.spin,
             first: 0,
         };
-        sweep_ball_walls(
-            walls,
-            view,
-            &balls.radius,
-            &balls.mass,
-            &balls.inv_mass,
-            parallel,
-            &solve,
-        );
+        let builds = BallBuilds {
+            radius: &balls.radius,
+            mass: &balls.mass,
+            inv_mass: &balls.inv_mass,
+        };
+        sweep_ball_walls(walls, view, builds, parallel, &solve);
         for c in rest {
             others(c, bodies);
         }
@@ -448,12 +445,12 @@ impl Bodies<'_> {
 }
 
 /// One ball's motion and build, for a contact that moves that ball alone.
-pub(crate) struct BallMotion<'a> {
-    pub velocity: &'a mut DVec3,
-    pub spin: &'a mut DVec3,
-    pub radius: f64,
-    pub mass: f64,
-    pub inv_mass: f64,
+struct BallMotion<'a> {
+    velocity: &'a mut DVec3,
+    spin: &'a mut DVec3,
+    radius: f64,
+    mass: f64,
+    inv_mass: f64,
 }
 
 impl BallMotion<'_> {
@@ -471,7 +468,7 @@ impl BallMotion<'_> {
     fn solve_friction(&mut self, c: &mut Contact) {
         let n = c.normal;
         let (r, m) = (self.radius, self.mass);
-        let inertia = 0.4 * m * r * r;
+        let inertia = sphere_inertia(m, r);
         let arm = -r * n;
         let (t1, t2) = n.any_orthonormal_pair();
         let limit = c.friction * c.impulse;
@@ -499,6 +496,14 @@ struct BallSlices<'a> {
     first: usize,
 }
 
+/// What every ball is made of, by slot: read alike by all threads.
+#[derive(Clone, Copy)]
+struct BallBuilds<'a> {
+    radius: &'a [f64],
+    mass: &'a [f64],
+    inv_mass: &'a [f64],
+}
+
 /// The ball a ball-wall contact moves.
 fn ball_of(c: &Contact) -> Option<usize> {
     match c.a {
@@ -512,9 +517,7 @@ fn ball_of(c: &Contact) -> Option<usize> {
 fn sweep_ball_walls<F>(
     walls: &mut [Contact],
     balls: BallSlices,
-    radius: &[f64],
-    mass: &[f64],
-    inv_mass: &[f64],
+    builds: BallBuilds,
     parallel: bool,
     solve: &F,
 ) where
@@ -542,8 +545,8 @@ fn sweep_ball_walls<F>(
                 },
             );
             rayon::join(
-                || sweep_ball_walls(left, left_balls, radius, mass, inv_mass, parallel, solve),
-                || sweep_ball_walls(right, right_balls, radius, mass, inv_mass, parallel, solve),
+                || sweep_ball_walls(left, left_balls, builds, parallel, solve),
+                || sweep_ball_walls(right, right_balls, builds, parallel, solve),
             );
             return;
         }
@@ -554,9 +557,9 @@ fn sweep_ball_walls<F>(
         let ball = BallMotion {
             velocity: &mut balls.velocity[k],
             spin: &mut balls.spin[k],
-            radius: radius[i],
-            mass: mass[i],
-            inv_mass: inv_mass[i],
+            radius: builds.radius[i],
+            mass: builds.mass[i],
+            inv_mass: builds.inv_mass[i],
         };
         solve(c, ball);
     }
