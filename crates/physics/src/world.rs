@@ -28,6 +28,7 @@ use crate::tumbler::{Grip, GroundedParams, Tumbler, TumblerShape};
 use crate::warm::WarmStart;
 use glam::{DMat3, DQuat, DVec3, Vec4};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Overlaps smaller than this are left alone (metres).
 const OVERLAP_SLOP: f64 = 1e-5;
@@ -35,6 +36,13 @@ const OVERLAP_SLOP: f64 = 1e-5;
 const TOUCH_SLOP: f64 = 1e-6;
 /// From this many live balls on, contacts are found on all threads.
 const PARALLEL_BALLS: usize = 2048;
+/// Balls sunk into each other deeper than this share of their radii's sum
+/// are pushed apart down to it (see `push_apart_sunk_balls`).
+const SUNK_SLOP: f64 = 0.005;
+/// Sweeps over the pairs that push sunk balls apart, and the share of an
+/// overlap that one push removes.
+const PUSH_SWEEPS: usize = 4;
+const PUSH_SHARE: f64 = 0.5;
 
 /// Why a world could not be built from a configuration.
 #[derive(Clone, Debug, PartialEq)]
@@ -106,6 +114,8 @@ pub struct World {
     speed: Vec<f64>,
     /// Per ball: how many other balls it may touch this step (saturating).
     ball_partners: Vec<u8>,
+    /// Per ball: where it was before sunk balls were pushed apart.
+    unpushed: Vec<DVec3>,
     crowd: Crowd,
     /// Last step's impulses of each solver stage, by ball number (see [`crate::warm`]),
     /// and this step's, which take their place once the step is done.
@@ -148,8 +158,11 @@ impl World {
             }
         }
         let b = &config.balls;
-        let r_max = b.radius.max(config.fireball.radius);
-        let grid = Grid::new(room.min, room.max, 3.0 * r_max);
+        // Two balls can touch within a step only if their centres are closer
+        // than two radii plus the speculative reach of one radius (see
+        // `collect_contacts`): a cell that wide finds every pair. The fireball
+        // and tumblers look for balls by box, whatever the cell size.
+        let grid = Grid::new(room.min, room.max, 3.0 * b.radius + 4.0 * TOUCH_SLOP);
         let mut world = World {
             balls: Balls::with_uniform(b.count, b.radius, b.mass),
             sorted: Balls::default(),
@@ -164,6 +177,7 @@ impl World {
             contacts: Contacts::default(),
             hit_wall: vec![false; b.count],
             ball_partners: Vec::new(),
+            unpushed: Vec::new(),
             pair_spheres: Vec::new(),
             speed: Vec::new(),
             crowd: Crowd::default(),
@@ -504,6 +518,7 @@ impl World {
     /// One step of the balls and tumblers, with or without a warm start.
     fn advance(&mut self, dt: f64, warm_start: bool) {
         let g = DVec3::new(0.0, -self.config.gravity, 0.0);
+        let start_energy = self.energy().total();
         self.grid.rebuild(&self.balls.position, &self.balls.alive);
         let first_event = self.events.len();
         self.enter_sorted_order();
@@ -551,6 +566,15 @@ impl World {
         );
         self.record_warm_start(Stage::Project);
         self.report_contacts();
+        // Pushing sunk balls apart lifts them: it may spend what the step
+        // has lost, no more, unless the hand feeds energy in anyway.
+        let budget = if self.grabbed().is_some() {
+            f64::INFINITY
+        } else {
+            let rounding = 1e-10 * start_energy.abs();
+            start_energy - self.energy().total() - rounding
+        };
+        self.push_apart_sunk_balls(budget);
         self.separate_overlaps();
         self.leave_sorted_order(first_event);
     }
@@ -1048,6 +1072,59 @@ impl World {
     /// crowd, pushing one pair apart drives its balls into their neighbours,
     /// and a pile pushed pair by pair sinks into itself. There the solver,
     /// warm-started, keeps overlaps from growing instead.
+    /// Pushes apart balls that have sunk into each other (P3).
+    ///
+    /// The solver stops contacts from approaching but never pushes them
+    /// apart, which would add energy. Yet in a deep pile the iterations
+    /// leave some approach, and overlaps would grow step after step: the
+    /// pile would creep into itself. So the pairs are swept on positions
+    /// too, each push moving the two balls apart along their line of centres
+    /// in inverse proportion to their masses, walls holding them. Lifting
+    /// the balls costs potential energy: if it costs more than `budget`, every
+    /// push is shortened alike to fit. The energy a pile loses by sinking in
+    /// a step is thus exactly what lifting it back costs.
+    fn push_apart_sunk_balls(&mut self, budget: f64) {
+        let balls = &mut self.balls;
+        self.unpushed.clone_from(&balls.position);
+        let (radius, inv_mass) = (&balls.radius, &balls.inv_mass);
+        let mut pushed = false;
+        for _ in 0..PUSH_SWEEPS {
+            let pushed_now = AtomicBool::new(false);
+            let push = |p: &mut Pair, position: &mut [DVec3], first: usize| {
+                let (i, j) = (p.i as usize, p.j as usize);
+                let d = position[i - first] - position[j - first];
+                let dist = d.length();
+                let overlap = (radius[i] + radius[j]) * (1.0 - SUNK_SLOP) - dist;
+                if overlap > 0.0 && dist > 0.0 {
+                    let push = d * (PUSH_SHARE * overlap / (dist * (inv_mass[i] + inv_mass[j])));
+                    position[i - first] += push * inv_mass[i];
+                    position[j - first] -= push * inv_mass[j];
+                    pushed_now.store(true, Ordering::Relaxed);
+                }
+            };
+            self.contacts.sweep_slots(&mut balls.position, &push);
+            if !pushed_now.into_inner() {
+                break;
+            }
+            pushed = true;
+            for (p, &r) in balls.position.iter_mut().zip(radius) {
+                *p = self.room.clamp_sphere(*p, r);
+            }
+        }
+        if !pushed {
+            return;
+        }
+        let g = self.config.gravity;
+        let lift = |i: usize| balls.mass[i] * g * (balls.position[i].y - self.unpushed[i].y);
+        let cost: f64 = (0..balls.len()).map(lift).sum();
+        if cost > budget {
+            let share = (budget / cost).max(0.0);
+            for (p, &from) in balls.position.iter_mut().zip(&self.unpushed) {
+                *p = from + (*p - from) * share;
+            }
+        }
+    }
+
     fn separate_overlaps(&mut self) {
         let shape = self.shape.clone();
         let shape = &shape;
