@@ -160,9 +160,14 @@ impl World {
         let b = &config.balls;
         // Two balls can touch within a step only if their centres are closer
         // than two radii plus the speculative reach of one radius (see
-        // `collect_contacts`): a cell that wide finds every pair. The fireball
-        // and tumblers look for balls by box, whatever the cell size.
-        let grid = Grid::new(room.min, room.max, 3.0 * b.radius + 4.0 * TOUCH_SLOP);
+        // `collect_contacts`): a cell that wide finds every pair. Balls
+        // spread thin through the room get cells about as wide as the space
+        // between them, so that walking the empty cells costs no more than
+        // the balls. The fireball and tumblers look for balls by box,
+        // whatever the cell size.
+        let touch = 3.0 * b.radius + 4.0 * TOUCH_SLOP;
+        let spacing = (room.size().element_product() / b.count.max(1) as f64).cbrt();
+        let grid = Grid::new(room.min, room.max, touch.max(spacing));
         let mut world = World {
             balls: Balls::with_uniform(b.count, b.radius, b.mass),
             sorted: Balls::default(),
