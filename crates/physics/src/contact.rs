@@ -142,14 +142,42 @@ impl Pair {
         self.mass = if w > 0.0 { 1.0 / w } else { 0.0 };
     }
 
+}
+
+/// A pair as a solver stage iterates on it: only what the iterations read
+/// and write, two thirds of a [`Pair`], so that the sweeps over a crowd's
+/// pairs stream less memory.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PairRow {
+    i: u32,
+    j: u32,
+    normal: DVec3,
+    mass: f64,
+    impulse: f64,
+    /// The relative normal velocity the stage drives the pair to, at least.
+    target: f64,
+}
+
+impl PairRow {
+    fn new(p: &Pair, target: f64) -> PairRow {
+        PairRow {
+            i: p.i,
+            j: p.j,
+            normal: p.normal,
+            mass: p.mass,
+            impulse: p.impulse,
+            target,
+        }
+    }
+
     /// One Gauss-Seidel update, as [`Bodies::solve_normal`] for two balls.
     /// `velocity` holds the slots from `first` on; `inv_mass` all of them.
     #[inline]
-    fn solve(&mut self, velocity: &mut [DVec3], first: usize, inv_mass: &[f64], target: f64) {
+    fn solve(&mut self, velocity: &mut [DVec3], first: usize, inv_mass: &[f64]) {
         let (i, j) = (self.i as usize, self.j as usize);
         let (vi, vj) = (i - first, j - first);
         let vn = (velocity[vi] - velocity[vj]).dot(self.normal);
-        let delta = accumulate(&mut self.impulse, self.mass, vn, target);
+        let delta = accumulate(&mut self.impulse, self.mass, vn, self.target);
         if delta != 0.0 {
             velocity[vi] += self.normal * (delta * inv_mass[i]);
             velocity[vj] -= self.normal * (delta * inv_mass[j]);
@@ -180,9 +208,10 @@ pub(crate) const PARALLEL_PAIRS: usize = 4096;
 /// apart share no ball: the even bands are swept side by side, then the odd
 /// ones. Each band's own pairs are solved in order, so the result is
 /// bit-identical on any number of threads.
-fn sweep_bands<F>(bands: &mut [Vec<Pair>], layers: &[usize], velocity: &mut [DVec3], solve: &F)
+fn sweep_bands<T, F>(bands: &mut [Vec<T>], layers: &[usize], velocity: &mut [DVec3], solve: &F)
 where
-    F: Fn(&mut Pair, &mut [DVec3], usize) + Sync,
+    T: Send,
+    F: Fn(&mut T, &mut [DVec3], usize) + Sync,
 {
     let parallel = bands.iter().map(Vec::len).sum::<usize>() >= PARALLEL_PAIRS;
     for parity in 0..2 {
@@ -206,15 +235,16 @@ where
 /// Sweeps `count` bands: `bands[0]`, `bands[2]`, ..., whose balls start at
 /// slot `layers[0]` (the first slot of `velocity`), splitting the work in
 /// halves across threads.
-fn sweep_alternate<F>(
-    bands: &mut [Vec<Pair>],
+fn sweep_alternate<T, F>(
+    bands: &mut [Vec<T>],
     layers: &[usize],
     velocity: &mut [DVec3],
     count: usize,
     parallel: bool,
     solve: &F,
 ) where
-    F: Fn(&mut Pair, &mut [DVec3], usize) + Sync,
+    T: Send,
+    F: Fn(&mut T, &mut [DVec3], usize) + Sync,
 {
     if count >= 2 && parallel {
         // Split where the pairs, not the bands, are halved: piles fill some
@@ -271,6 +301,8 @@ pub(crate) struct Contacts {
     /// slot order, and the rest involve a tumbler.
     pub others: Vec<Contact>,
     pub ball_walls: usize,
+    /// Per band, the pairs a solver stage iterates on (see [`PairRow`]).
+    rows: Vec<Vec<PairRow>>,
 }
 
 impl Contacts {
@@ -374,6 +406,55 @@ impl Contacts {
         F: Fn(&mut Pair, &mut [DVec3], usize) + Sync,
     {
         sweep_bands(&mut self.bands, &self.layers, slots, solve);
+    }
+
+    /// Fills the rows from the pairs that `target` gives a target, band by
+    /// band and in order.
+    fn build_rows<F>(&mut self, target: F)
+    where
+        F: Fn(&Pair) -> Option<f64> + Sync,
+    {
+        self.rows.resize_with(self.bands.len(), Vec::new);
+        let build = |(band, rows): (&Vec<Pair>, &mut Vec<PairRow>)| {
+            rows.clear();
+            rows.extend(
+                band.iter()
+                    .filter_map(|p| target(p).map(|t| PairRow::new(p, t))),
+            );
+        };
+        if self.pair_count() >= PARALLEL_PAIRS {
+            self.bands.par_iter().zip(&mut self.rows).for_each(build);
+        } else {
+            self.bands.iter().zip(&mut self.rows).for_each(build);
+        }
+    }
+
+    /// One Gauss-Seidel sweep over the rows (see [`sweep_bands`]).
+    fn sweep_rows(&mut self, balls: &mut Balls) {
+        let inv_mass = &balls.inv_mass;
+        let solve = |r: &mut PairRow, velocity: &mut [DVec3], first: usize| {
+            r.solve(velocity, first, inv_mass)
+        };
+        sweep_bands(&mut self.rows, &self.layers, &mut balls.velocity, &solve);
+    }
+
+    /// Hands the rows' impulses back to the pairs they were built from, with
+    /// the same `chosen` test as [`Contacts::build_rows`].
+    fn keep_row_impulses<F>(&mut self, chosen: F)
+    where
+        F: Fn(&Pair) -> bool + Sync,
+    {
+        let keep = |(band, rows): (&mut Vec<Pair>, &Vec<PairRow>)| {
+            let mut rows = rows.iter();
+            for p in band.iter_mut().filter(|p| chosen(p)) {
+                p.impulse = rows.next().map_or(0.0, |r| r.impulse);
+            }
+        };
+        if self.pair_count() >= PARALLEL_PAIRS {
+            self.bands.par_iter_mut().zip(&self.rows).for_each(keep);
+        } else {
+            self.bands.iter_mut().zip(&self.rows).for_each(keep);
+        }
     }
 }
 
@@ -727,6 +808,7 @@ pub(crate) fn solve_predict(
             0.0
         }
     };
+    contacts.build_rows(|p| Some(if p.gap > 0.0 { -p.gap / dt } else { 0.0 }));
     for _ in 0..iterations {
         contacts.sweep_walls(bodies.balls, |c, mut ball| {
             ball.solve_normal(c, target(c));
@@ -734,12 +816,10 @@ pub(crate) fn solve_predict(
                 ball.solve_friction(c);
             }
         });
-        contacts.sweep(bodies.balls, |p, velocity, first, inv_mass| {
-            let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
-            p.solve(velocity, first, inv_mass, target);
-        });
+        contacts.sweep_rows(bodies.balls);
         contacts.sweep_tumblers(bodies, |c, bodies| bodies.solve_normal(c, target(c)));
     }
+    contacts.keep_row_impulses(|_| true);
     for p in contacts.pairs_mut() {
         p.pushed = p.impulse;
     }
@@ -905,26 +985,28 @@ pub(crate) fn solve_project(
             0.0
         }
     };
+    // Only the pairs that pushed take part.
+    contacts.build_rows(|p| {
+        (p.pushed > 0.0).then(|| {
+            if p.bounce {
+                -ball_restitution * p.approach
+            } else {
+                0.0
+            }
+        })
+    });
     for _ in 0..iterations {
         contacts.sweep_walls(bodies.balls, |c, mut ball| {
             if c.pushed > 0.0 {
                 ball.solve_normal(c, target(c));
             }
         });
-        contacts.sweep(bodies.balls, |p, velocity, first, inv_mass| {
-            if p.pushed > 0.0 {
-                let target = if p.bounce {
-                    -ball_restitution * p.approach
-                } else {
-                    0.0
-                };
-                p.solve(velocity, first, inv_mass, target);
-            }
-        });
+        contacts.sweep_rows(bodies.balls);
         contacts.sweep_tumblers(bodies, |c, bodies| {
             if c.pushed > 0.0 {
                 bodies.solve_normal(c, target(c));
             }
         });
     }
+    contacts.keep_row_impulses(|p| p.pushed > 0.0);
 }
