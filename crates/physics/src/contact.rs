@@ -141,7 +141,6 @@ impl Pair {
         let w = balls.inv_mass[self.i as usize] + balls.inv_mass[self.j as usize];
         self.mass = if w > 0.0 { 1.0 / w } else { 0.0 };
     }
-
 }
 
 /// A pair as a solver stage iterates on it: only what the iterations read
@@ -843,14 +842,6 @@ impl Stage {
     }
 }
 
-/// The share of last step's impulse a contact starts from. Starting from all
-/// of it, a resting pile is held a little too hard here and there, each step
-/// lifting it by a hair: energy the step may not make (see
-/// [`crate::World::step`]). A little less leaves the iterations to add the
-/// rest, and the pile sinks by nothing that `push_apart_sunk_balls` would
-/// not lift back.
-const WARM_SHARE: f64 = 0.98;
-
 /// Starts pairs and ball-wall contacts from last step's impulses.
 fn apply_warm_start(
     bodies: &mut Bodies,
@@ -864,7 +855,7 @@ fn apply_warm_start(
             return;
         }
         let (i, j) = (p.i as usize, p.j as usize);
-        let impulse = WARM_SHARE * warm.pair(ids[i], ids[j]);
+        let impulse = warm.pair(ids[i], ids[j]);
         if impulse > 0.0 {
             p.impulse = impulse;
             velocity[i - first] += p.normal * (impulse * inv_mass[i]);
@@ -877,7 +868,7 @@ fn apply_warm_start(
             continue;
         }
         if let (BodyRef::Ball(i), BodyRef::Wall(s)) = (c.a, c.b) {
-            let impulse = WARM_SHARE * warm.wall(ids[i], s);
+            let impulse = warm.wall(ids[i], s);
             if impulse > 0.0 {
                 c.impulse = impulse;
                 balls.velocity[i] += c.normal * (impulse * balls.inv_mass[i]);
