@@ -9,8 +9,8 @@
 //! a step only have to correct the change.
 //!
 //! A warm start can push apart contacts that no longer need it, which would
-//! add energy; [`crate::World::step`] guards against that by retaking such a
-//! step cold.
+//! add energy; [`crate::World::step`] takes such excess back out of the
+//! step's motion.
 
 use crate::room::Surface;
 

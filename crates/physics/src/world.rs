@@ -452,9 +452,10 @@ impl World {
     /// The contact solver starts from last step's impulses (see
     /// [`crate::warm`]). Should that make energy (only the hand may feed
     /// some in), the excess is taken from the balls' motion, all slowed
-    /// alike; if they have too little, the step is retaken from its start
-    /// with half the warm start, and then without. Either way energy never
-    /// grows.
+    /// alike; if they have too little, the balls' motion of the step is
+    /// shortened (see `shorten_ball_motion`); if even that cannot pay, the
+    /// step is retaken from its start with half the warm start, and then
+    /// without. Either way energy never grows.
     pub fn step(&mut self) {
         // A crowded world's step runs on a worker thread: its forty-odd
         // parallel stages then hand work to the other workers, which are
