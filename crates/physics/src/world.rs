@@ -1117,13 +1117,6 @@ impl World {
         }
     }
 
-    /// Pushes apart bodies that still overlap: balls along the line of
-    /// centres, weighted by mass; tumblers only sideways over the floor.
-    ///
-    /// Two balls are pushed apart only when neither touches a third: in a
-    /// crowd, pushing one pair apart drives its balls into their neighbours,
-    /// and a pile pushed pair by pair sinks into itself. There the solver,
-    /// warm-started, keeps overlaps from growing instead.
     /// Pushes apart balls that have sunk into each other (P3).
     ///
     /// The solver stops contacts from approaching but never pushes them
@@ -1177,6 +1170,11 @@ impl World {
         }
     }
 
+    /// Pushes apart bodies that still overlap: a lone pair of balls along
+    /// their line of centres, weighted by mass and paid from their own
+    /// motion; a ball out of a tumbler; tumblers only sideways over the
+    /// floor. Crowds of balls were pushed apart together already (see
+    /// `push_apart_sunk_balls`).
     fn separate_overlaps(&mut self) {
         let shape = self.shape.clone();
         let shape = &shape;
