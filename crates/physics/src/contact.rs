@@ -112,8 +112,6 @@ pub(crate) struct Pair {
     pub impulse: f64,
     /// Normal impulse of the predict stage (> 0: the pair pushed).
     pub pushed: f64,
-    /// Whether the project stage bounces this pair.
-    pub bounce: bool,
 }
 
 impl Pair {
@@ -128,7 +126,6 @@ impl Pair {
             mass: 0.0,
             impulse: 0.0,
             pushed: 0.0,
-            bounce: false,
         }
     }
 
@@ -158,15 +155,23 @@ pub(crate) struct PairRow {
 }
 
 impl PairRow {
-    fn new(p: &Pair, target: f64) -> PairRow {
+    fn new(p: &Pair, target: f64, impulse: f64) -> PairRow {
         PairRow {
             i: p.i,
             j: p.j,
             normal: p.normal,
             mass: p.mass,
-            impulse: p.impulse,
+            impulse,
             target,
         }
+    }
+
+    /// Applies `impulse` to the two balls.
+    #[inline]
+    fn push(&self, velocity: &mut [DVec3], first: usize, inv_mass: &[f64], impulse: f64) {
+        let (i, j) = (self.i as usize, self.j as usize);
+        velocity[i - first] += self.normal * (impulse * inv_mass[i]);
+        velocity[j - first] -= self.normal * (impulse * inv_mass[j]);
     }
 
     /// One Gauss-Seidel update, as [`Bodies::solve_normal`] for two balls.
@@ -178,8 +183,7 @@ impl PairRow {
         let vn = (velocity[vi] - velocity[vj]).dot(self.normal);
         let delta = accumulate(&mut self.impulse, self.mass, vn, self.target);
         if delta != 0.0 {
-            velocity[vi] += self.normal * (delta * inv_mass[i]);
-            velocity[vj] -= self.normal * (delta * inv_mass[j]);
+            self.push(velocity, first, inv_mass, delta);
         }
     }
 }
@@ -207,10 +211,11 @@ pub(crate) const PARALLEL_PAIRS: usize = 4096;
 /// apart share no ball: the even bands are swept side by side, then the odd
 /// ones. Each band's own pairs are solved in order, so the result is
 /// bit-identical on any number of threads.
-fn sweep_bands<T, F>(bands: &mut [Vec<T>], layers: &[usize], velocity: &mut [DVec3], solve: &F)
+fn sweep_bands<T, S, F>(bands: &mut [Vec<T>], layers: &[usize], velocity: &mut [S], solve: &F)
 where
     T: Send,
-    F: Fn(&mut T, &mut [DVec3], usize) + Sync,
+    S: Send,
+    F: Fn(&mut T, &mut [S], usize) + Sync,
 {
     let parallel = bands.iter().map(Vec::len).sum::<usize>() >= PARALLEL_PAIRS;
     for parity in 0..2 {
@@ -234,16 +239,17 @@ where
 /// Sweeps `count` bands: `bands[0]`, `bands[2]`, ..., whose balls start at
 /// slot `layers[0]` (the first slot of `velocity`), splitting the work in
 /// halves across threads.
-fn sweep_alternate<T, F>(
+fn sweep_alternate<T, S, F>(
     bands: &mut [Vec<T>],
     layers: &[usize],
-    velocity: &mut [DVec3],
+    velocity: &mut [S],
     count: usize,
     parallel: bool,
     solve: &F,
 ) where
     T: Send,
-    F: Fn(&mut T, &mut [DVec3], usize) + Sync,
+    S: Send,
+    F: Fn(&mut T, &mut [S], usize) + Sync,
 {
     if count >= 2 && parallel {
         // Split where the pairs, not the bands, are halved: piles fill some
@@ -287,15 +293,14 @@ fn sweep_alternate<T, F>(
 ///
 /// Band `z` holds the pairs found from the cells of grid layer `z` (see
 /// [`crate::broadphase::Grid::layer_slots`]): they join balls of layers `z`
-/// and `z + 1`, the slots `layers[z]..layers[z + 2]`. The crowd numbers the
-/// contacts band after band, then `others`.
+/// and `z + 1`, the slots `layers[z]..layers[z + 2]`.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Contacts {
     pub bands: Vec<Vec<Pair>>,
     /// First slot of each grid layer, and one past the last slot.
     pub layers: Vec<usize>,
-    /// Number of the first pair of each band, and the pair count.
-    band_start: Vec<usize>,
+    /// Pairs in all bands, counted once they are filled.
+    pair_count: usize,
     /// Every other contact; the first `ball_walls` join a ball to a wall, in
     /// slot order, and the rest involve a tumbler.
     pub others: Vec<Contact>,
@@ -309,45 +314,22 @@ impl Contacts {
     pub fn reset(&mut self, layers: usize) {
         self.bands.resize_with(layers, Vec::new);
         self.bands.iter_mut().for_each(Vec::clear);
+        self.pair_count = 0;
         self.others.clear();
         self.ball_walls = 0;
     }
 
-    /// Numbers the pairs once the bands are filled.
-    pub fn number_pairs(&mut self) {
-        self.band_start.clear();
-        let mut total = 0;
-        for band in &self.bands {
-            self.band_start.push(total);
-            total += band.len();
-        }
-        self.band_start.push(total);
+    /// Counts the pairs once the bands are filled.
+    pub fn count_pairs(&mut self) {
+        self.pair_count = self.bands.iter().map(Vec::len).sum();
     }
 
     pub fn pair_count(&self) -> usize {
-        self.band_start.last().copied().unwrap_or(0)
+        self.pair_count
     }
 
     pub fn pairs(&self) -> impl Iterator<Item = &Pair> {
         self.bands.iter().flatten()
-    }
-
-    fn pairs_mut(&mut self) -> impl Iterator<Item = &mut Pair> {
-        self.bands.iter_mut().flatten()
-    }
-
-    fn pair(&self, index: usize) -> &Pair {
-        let band = self.band_start.partition_point(|&start| start <= index) - 1;
-        &self.bands[band][index - self.band_start[band]]
-    }
-
-    fn normal(&self, index: usize) -> DVec3 {
-        let pairs = self.pair_count();
-        if index < pairs {
-            self.pair(index).normal
-        } else {
-            self.others[index - pairs].normal
-        }
     }
 
     /// Calls `solve(contact, ball)` for every ball-wall contact.
@@ -385,47 +367,44 @@ impl Contacts {
         }
     }
 
-    /// One sweep of `solve` over every pair (see [`sweep_bands`]).
-    fn sweep<F>(&mut self, balls: &mut Balls, solve: F)
-    where
-        F: Fn(&mut Pair, &mut [DVec3], usize, &[f64]) + Sync,
-    {
-        let inv_mass = &balls.inv_mass;
-        let solve = |p: &mut Pair, velocity: &mut [DVec3], first: usize| {
-            solve(p, velocity, first, inv_mass)
-        };
-        self.sweep_slots(&mut balls.velocity, &solve);
-    }
-
     /// One sweep of `solve(pair, slots, first)` over every pair, on a
-    /// per-slot quantity such as the balls' velocities or positions (see
+    /// per-slot quantity such as the balls' positions (see
     /// [`sweep_bands`]).
-    pub fn sweep_slots<F>(&mut self, slots: &mut [DVec3], solve: &F)
+    pub fn sweep_slots<S, F>(&mut self, slots: &mut [S], solve: &F)
     where
-        F: Fn(&mut Pair, &mut [DVec3], usize) + Sync,
+        S: Send,
+        F: Fn(&mut Pair, &mut [S], usize) + Sync,
     {
         sweep_bands(&mut self.bands, &self.layers, slots, solve);
     }
 
-    /// Fills the rows from the pairs that `target` gives a target, band by
-    /// band and in order.
-    fn build_rows<F>(&mut self, target: F)
+    /// Fills the rows from the pairs that `row` chooses, band by band and in
+    /// order, with the target and starting impulse it gives them, and
+    /// applies the starting impulses to the balls.
+    fn start_rows<F>(&mut self, balls: &mut Balls, row: F)
     where
-        F: Fn(&Pair) -> Option<f64> + Sync,
+        F: Fn(&Pair) -> Option<(f64, f64)> + Sync,
     {
         self.rows.resize_with(self.bands.len(), Vec::new);
-        let build = |(band, rows): (&Vec<Pair>, &mut Vec<PairRow>)| {
-            rows.clear();
-            rows.extend(
-                band.iter()
-                    .filter_map(|p| target(p).map(|t| PairRow::new(p, t))),
-            );
-        };
+        let build =
+            |(band, rows): (&Vec<Pair>, &mut Vec<PairRow>)| {
+                rows.clear();
+                rows.extend(band.iter().filter_map(|p| {
+                    row(p).map(|(target, impulse)| PairRow::new(p, target, impulse))
+                }));
+            };
         if self.pair_count() >= PARALLEL_PAIRS {
             self.bands.par_iter().zip(&mut self.rows).for_each(build);
         } else {
             self.bands.iter().zip(&mut self.rows).for_each(build);
         }
+        let inv_mass = &balls.inv_mass;
+        let start = |r: &mut PairRow, velocity: &mut [DVec3], first: usize| {
+            if r.impulse > 0.0 {
+                r.push(velocity, first, inv_mass, r.impulse);
+            }
+        };
+        sweep_bands(&mut self.rows, &self.layers, &mut balls.velocity, &start);
     }
 
     /// One Gauss-Seidel sweep over the rows (see [`sweep_bands`]).
@@ -437,22 +416,29 @@ impl Contacts {
         sweep_bands(&mut self.rows, &self.layers, &mut balls.velocity, &solve);
     }
 
-    /// Hands the rows' impulses back to the pairs they were built from, with
-    /// the same `chosen` test as [`Contacts::build_rows`].
-    fn keep_row_impulses<F>(&mut self, chosen: F)
+    /// Hands each pair its row's impulse, `keep(pair, impulse)`, 0 for the
+    /// pairs without a row; `chosen` tells them as in
+    /// [`Contacts::start_rows`].
+    fn keep_row_impulses<F, G>(&mut self, chosen: F, keep: G)
     where
         F: Fn(&Pair) -> bool + Sync,
+        G: Fn(&mut Pair, f64) + Sync,
     {
-        let keep = |(band, rows): (&mut Vec<Pair>, &Vec<PairRow>)| {
+        let hand = |(band, rows): (&mut Vec<Pair>, &Vec<PairRow>)| {
             let mut rows = rows.iter();
-            for p in band.iter_mut().filter(|p| chosen(p)) {
-                p.impulse = rows.next().map_or(0.0, |r| r.impulse);
+            for p in band.iter_mut() {
+                let impulse = if chosen(p) {
+                    rows.next().map_or(0.0, |r| r.impulse)
+                } else {
+                    0.0
+                };
+                keep(p, impulse);
             }
         };
         if self.pair_count() >= PARALLEL_PAIRS {
-            self.bands.par_iter_mut().zip(&self.rows).for_each(keep);
+            self.bands.par_iter_mut().zip(&self.rows).for_each(hand);
         } else {
-            self.bands.iter_mut().zip(&self.rows).for_each(keep);
+            self.bands.iter_mut().zip(&self.rows).for_each(hand);
         }
     }
 }
@@ -669,34 +655,79 @@ fn sweep_ball_walls<F>(
 /// off another one sideways. On a tumbler every pair of contacts is coupled.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Crowd {
-    ball_contacts: Vec<[u32; Crowd::PER_BALL]>,
-    ball_count: Vec<u8>,
+    balls: Vec<BallCrowd>,
     tumbler_count: Vec<u8>,
 }
 
-impl Crowd {
-    const PER_BALL: usize = 6;
+/// The contacts on one ball: how many, and the first few, each by the body
+/// on its other side (see [`other_side`]) and its normal.
+#[derive(Clone, Copy, Debug, Default)]
+struct BallCrowd {
+    count: u8,
+    other: [u32; BallCrowd::KEPT],
+    normal: [DVec3; BallCrowd::KEPT],
+}
 
+impl BallCrowd {
+    /// A ball with more contacts than this is crowded whatever their normals.
+    const KEPT: usize = 6;
+
+    fn add(&mut self, other: u32, normal: DVec3) {
+        let n = self.count as usize;
+        if n < BallCrowd::KEPT {
+            self.other[n] = other;
+            self.normal[n] = normal;
+        }
+        self.count = self.count.saturating_add(1);
+    }
+
+    /// Whether the contact with `other`, along `normal`, is the only one
+    /// coupled to this ball.
+    fn lone(&self, other: u32, normal: DVec3) -> bool {
+        let n = self.count as usize;
+        n <= BallCrowd::KEPT
+            && (0..n).all(|k| self.other[k] == other || self.normal[k].dot(normal).abs() < 1e-9)
+    }
+}
+
+/// A ball's contacts told apart by the body on their other side: another
+/// ball by its slot, a wall, or one sphere of a tumbler.
+fn other_side(body: BodyRef) -> u32 {
+    const WALL: u32 = 1 << 31;
+    const TUMBLER: u32 = 3 << 30;
+    match body {
+        BodyRef::Ball(j) => j as u32,
+        BodyRef::Wall(s) => WALL | s.index() as u32,
+        BodyRef::Tumbler(t, sphere) => TUMBLER | ((t as u32) << 4) | sphere as u32,
+    }
+}
+
+impl Crowd {
     fn reset(&mut self, balls: usize, tumblers: usize) {
-        self.ball_contacts.resize(balls, [0; Crowd::PER_BALL]);
-        self.ball_count.clear();
-        self.ball_count.resize(balls, 0);
+        self.balls.clear();
+        self.balls.resize(balls, BallCrowd::default());
         self.tumbler_count.clear();
         self.tumbler_count.resize(tumblers, 0);
     }
 
-    fn add_ball(&mut self, index: usize, i: usize) {
-        let n = self.ball_count[i] as usize;
-        if n < Crowd::PER_BALL {
-            self.ball_contacts[i][n] = index as u32;
-        }
-        self.ball_count[i] = self.ball_count[i].saturating_add(1);
+    /// Adds the pairs that `counts` picks, on all threads: a ball's list is
+    /// a set, so the order in which pairs join it does not matter.
+    fn add_pairs<F>(&mut self, contacts: &mut Contacts, counts: F)
+    where
+        F: Fn(&Pair) -> bool + Sync,
+    {
+        contacts.sweep_slots(&mut self.balls, &|p, balls, first| {
+            if counts(p) {
+                balls[p.i as usize - first].add(p.j, p.normal);
+                balls[p.j as usize - first].add(p.i, p.normal);
+            }
+        });
     }
 
-    fn add(&mut self, index: usize, c: &Contact) {
-        for body in [c.a, c.b] {
+    fn add(&mut self, c: &Contact) {
+        for (body, other) in [(c.a, c.b), (c.b, c.a)] {
             match body {
-                BodyRef::Ball(i) => self.add_ball(index, i),
+                BodyRef::Ball(i) => self.balls[i].add(other_side(other), c.normal),
                 BodyRef::Tumbler(t, _) => {
                     self.tumbler_count[t] = self.tumbler_count[t].saturating_add(1)
                 }
@@ -705,28 +736,20 @@ impl Crowd {
         }
     }
 
-    /// Whether contact `index`, along `normal`, is the only one coupled to ball `i`.
-    fn lone_on_ball(&self, index: usize, normal: DVec3, i: usize, contacts: &Contacts) -> bool {
-        let n = self.ball_count[i] as usize;
-        n <= Crowd::PER_BALL
-            && self.ball_contacts[i][..n].iter().all(|&k| {
-                k as usize == index || contacts.normal(k as usize).dot(normal).abs() < 1e-9
+    /// Whether pair `p` is the only contact coupled to its two balls.
+    fn lone_pair(&self, p: &Pair) -> bool {
+        self.balls[p.i as usize].lone(p.j, p.normal) && self.balls[p.j as usize].lone(p.i, p.normal)
+    }
+
+    /// Whether contact `c` is the only one coupled to its bodies.
+    fn lone(&self, c: &Contact) -> bool {
+        [(c.a, c.b), (c.b, c.a)]
+            .into_iter()
+            .all(|(body, other)| match body {
+                BodyRef::Ball(i) => self.balls[i].lone(other_side(other), c.normal),
+                BodyRef::Tumbler(t, _) => self.tumbler_count[t] == 1,
+                BodyRef::Wall(_) => true,
             })
-    }
-
-    fn lone_pair(&self, index: usize, p: &Pair, contacts: &Contacts) -> bool {
-        self.lone_on_ball(index, p.normal, p.i as usize, contacts)
-            && self.lone_on_ball(index, p.normal, p.j as usize, contacts)
-    }
-
-    /// Whether contact `index` is the only one coupled to its bodies.
-    fn lone(&self, index: usize, contacts: &Contacts) -> bool {
-        let c = &contacts.others[index - contacts.pair_count()];
-        [c.a, c.b].into_iter().all(|body| match body {
-            BodyRef::Ball(i) => self.lone_on_ball(index, c.normal, i, contacts),
-            BodyRef::Tumbler(t, _) => self.tumbler_count[t] == 1,
-            BodyRef::Wall(_) => true,
-        })
     }
 }
 
@@ -760,7 +783,6 @@ pub(crate) fn solve_predict(
     let prepare = |band: &mut Vec<Pair>| {
         for p in band.iter_mut() {
             p.prepare(balls);
-            p.impulse = 0.0;
             p.kick = p.normal_velocity(balls) - p.approach;
         }
     };
@@ -771,32 +793,31 @@ pub(crate) fn solve_predict(
     }
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
     if contacts.others.iter().any(Contact::involves_tumbler) {
-        for (index, p) in contacts.pairs().enumerate() {
-            crowd.add_ball(index, p.i as usize);
-            crowd.add_ball(index, p.j as usize);
-        }
+        crowd.add_pairs(contacts, |_| true);
     }
-    let first_other = contacts.pair_count();
-    for (k, c) in contacts.others.iter_mut().enumerate() {
+    for c in contacts.others.iter_mut() {
         bodies.prepare(c);
         c.impulse = 0.0;
         c.friction_impulse = [0.0; 2];
         // Gravity's half step, which the contact's two sides may not share.
         c.kick = bodies.normal_velocity(c) - c.approach;
         if touching(c.gap, c.approach, c.kick) {
-            crowd.add(first_other + k, c);
+            crowd.add(c);
         }
     }
-    for k in 0..contacts.others.len() {
-        let c = &contacts.others[k];
-        let bounce = c.involves_tumbler()
+    for c in contacts.others.iter_mut() {
+        c.bounce = c.involves_tumbler()
             && c.approach < -bounce_threshold
             && c.gap + c.approach * dt <= 0.0
-            && crowd.lone(first_other + k, contacts);
-        contacts.others[k].bounce = bounce;
+            && crowd.lone(c);
     }
+    // Pairs never bounce here, so all start warm.
+    contacts.start_rows(bodies.balls, |p| {
+        let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
+        Some((target, warm_pair(warm, p)))
+    });
     if let Some((warm, ids)) = warm {
-        apply_warm_start(bodies, contacts, warm, ids, Stage::Predict);
+        warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Predict);
     }
     let target = |c: &Contact| {
         if c.bounce {
@@ -807,7 +828,6 @@ pub(crate) fn solve_predict(
             0.0
         }
     };
-    contacts.build_rows(|p| Some(if p.gap > 0.0 { -p.gap / dt } else { 0.0 }));
     for _ in 0..iterations {
         contacts.sweep_walls(bodies.balls, |c, mut ball| {
             ball.solve_normal(c, target(c));
@@ -818,10 +838,13 @@ pub(crate) fn solve_predict(
         contacts.sweep_rows(bodies.balls);
         contacts.sweep_tumblers(bodies, |c, bodies| bodies.solve_normal(c, target(c)));
     }
-    contacts.keep_row_impulses(|_| true);
-    for p in contacts.pairs_mut() {
-        p.pushed = p.impulse;
-    }
+    contacts.keep_row_impulses(
+        |_| true,
+        |p, impulse| {
+            p.impulse = impulse;
+            p.pushed = impulse;
+        },
+    );
     for c in contacts.others.iter_mut() {
         c.pushed = c.impulse;
     }
@@ -842,27 +865,21 @@ impl Stage {
     }
 }
 
-/// Starts pairs and ball-wall contacts from last step's impulses.
-fn apply_warm_start(
-    bodies: &mut Bodies,
+/// Last step's impulse of pair `p`, if there is a warm start.
+fn warm_pair(warm: Option<(&WarmStart, &[u32])>, p: &Pair) -> f64 {
+    warm.map_or(0.0, |(warm, ids)| {
+        warm.pair(ids[p.i as usize], ids[p.j as usize])
+    })
+}
+
+/// Starts ball-wall contacts from last step's impulses.
+fn warm_start_walls(
+    balls: &mut Balls,
     contacts: &mut Contacts,
     warm: &WarmStart,
     ids: &[u32],
     stage: Stage,
 ) {
-    contacts.sweep(bodies.balls, |p, velocity, first, inv_mass| {
-        if !stage.warm_starts(p.pushed, p.bounce) {
-            return;
-        }
-        let (i, j) = (p.i as usize, p.j as usize);
-        let impulse = warm.pair(ids[i], ids[j]);
-        if impulse > 0.0 {
-            p.impulse = impulse;
-            velocity[i - first] += p.normal * (impulse * inv_mass[i]);
-            velocity[j - first] -= p.normal * (impulse * inv_mass[j]);
-        }
-    });
-    let balls = &mut *bodies.balls;
     for c in contacts.others.iter_mut() {
         if !stage.warm_starts(c.pushed, c.bounce) {
             continue;
@@ -918,47 +935,18 @@ pub(crate) fn solve_project(
     warm: Option<(&WarmStart, &[u32])>,
 ) {
     crowd.reset(bodies.balls.len(), bodies.tumblers.len());
-    for (index, p) in contacts.pairs().enumerate() {
-        if p.pushed > 0.0 {
-            crowd.add_ball(index, p.i as usize);
-            crowd.add_ball(index, p.j as usize);
-        }
-    }
-    let first_other = contacts.pair_count();
-    for (k, c) in contacts.others.iter().enumerate() {
-        if c.pushed > 0.0 {
-            crowd.add(first_other + k, c);
-        }
+    crowd.add_pairs(contacts, |p| p.pushed > 0.0);
+    for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
+        crowd.add(c);
     }
     let moved_off_wall = |b: BodyRef| matches!(b, BodyRef::Ball(i) if hit_wall[i]);
-    let mut index = 0;
-    for band in 0..contacts.bands.len() {
-        for k in 0..contacts.bands[band].len() {
-            let p = &contacts.bands[band][k];
-            let bounce = p.pushed > 0.0
-                && p.approach < -bounce_threshold
-                && !hit_wall[p.i as usize]
-                && !hit_wall[p.j as usize]
-                && crowd.lone_pair(index, p, contacts);
-            contacts.bands[band][k].bounce = bounce;
-            index += 1;
-        }
-    }
-    for k in 0..contacts.others.len() {
-        let c = &contacts.others[k];
-        let bounce = c.pushed > 0.0
+    for c in contacts.others.iter_mut() {
+        c.bounce = c.pushed > 0.0
             && c.approach < -bounce_threshold
             && !c.involves_tumbler()
             && !moved_off_wall(c.a)
             && !moved_off_wall(c.b)
-            && crowd.lone(first_other + k, contacts);
-        contacts.others[k].bounce = bounce;
-    }
-    for p in contacts.pairs_mut() {
-        p.impulse = 0.0;
-        if p.pushed > 0.0 {
-            p.prepare(bodies.balls);
-        }
+            && crowd.lone(c);
     }
     for c in contacts.others.iter_mut() {
         c.impulse = 0.0;
@@ -966,8 +954,25 @@ pub(crate) fn solve_project(
             bodies.prepare(c);
         }
     }
+    // Only the pairs that pushed take part; their masses are the predict
+    // stage's.
+    // A bouncing pair starts cold: its impulse is of this impact alone.
+    let crowd = &*crowd;
+    contacts.start_rows(bodies.balls, |p| {
+        (p.pushed > 0.0).then(|| {
+            let bounce = p.approach < -bounce_threshold
+                && !hit_wall[p.i as usize]
+                && !hit_wall[p.j as usize]
+                && crowd.lone_pair(p);
+            if bounce {
+                (-ball_restitution * p.approach, 0.0)
+            } else {
+                (0.0, warm_pair(warm, p))
+            }
+        })
+    });
     if let Some((warm, ids)) = warm {
-        apply_warm_start(bodies, contacts, warm, ids, Stage::Project);
+        warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Project);
     }
     let target = |c: &Contact| {
         if c.bounce {
@@ -976,16 +981,6 @@ pub(crate) fn solve_project(
             0.0
         }
     };
-    // Only the pairs that pushed take part.
-    contacts.build_rows(|p| {
-        (p.pushed > 0.0).then(|| {
-            if p.bounce {
-                -ball_restitution * p.approach
-            } else {
-                0.0
-            }
-        })
-    });
     for _ in 0..iterations {
         contacts.sweep_walls(bodies.balls, |c, mut ball| {
             if c.pushed > 0.0 {
@@ -999,5 +994,5 @@ pub(crate) fn solve_project(
             }
         });
     }
-    contacts.keep_row_impulses(|p| p.pushed > 0.0);
+    contacts.keep_row_impulses(|p| p.pushed > 0.0, |p, impulse| p.impulse = impulse);
 }

@@ -774,7 +774,7 @@ impl World {
         } else {
             contacts.bands.iter_mut().enumerate().for_each(find_pairs);
         }
-        contacts.number_pairs();
+        contacts.count_pairs();
 
         // Balls resting on or touching a wall. A lone ball's impacts are
         // found exactly while moving (see `move_balls`); a ball pressed by
