@@ -704,8 +704,9 @@ fn other_side(body: BodyRef) -> u32 {
 
 impl Crowd {
     fn reset(&mut self, balls: usize, tumblers: usize) {
-        self.balls.clear();
+        // Entries past a ball's count are never read: only counts restart.
         self.balls.resize(balls, BallCrowd::default());
+        self.balls.iter_mut().for_each(|b| b.count = 0);
         self.tumbler_count.clear();
         self.tumbler_count.resize(tumblers, 0);
     }

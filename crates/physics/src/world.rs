@@ -116,6 +116,8 @@ pub struct World {
     ball_partners: Vec<u8>,
     /// Per ball: where it was before sunk balls were pushed apart.
     unpushed: Vec<DVec3>,
+    /// Per grid layer: the contacts of its balls with the walls.
+    wall_contacts_by_layer: Vec<Vec<Contact>>,
     crowd: Crowd,
     /// Last step's impulses of each solver stage, by ball number (see [`crate::warm`]),
     /// and this step's, which take their place once the step is done.
@@ -183,6 +185,7 @@ impl World {
             hit_wall: vec![false; b.count],
             ball_partners: Vec::new(),
             unpushed: Vec::new(),
+            wall_contacts_by_layer: Vec::new(),
             pair_spheres: Vec::new(),
             speed: Vec::new(),
             crowd: Crowd::default(),
@@ -471,13 +474,13 @@ impl World {
     fn step_here(&mut self) {
         let dt = self.config.solver.dt;
         if self.grabbed().is_some() {
-            self.advance(dt, true);
+            self.advance(dt, true, None);
         } else {
             let before = self.energy().total();
             self.before_step.0.clone_from(&self.balls);
             self.before_step.1.clone_from(&self.tumblers);
             let first_event = self.events.len();
-            self.advance(dt, true);
+            self.advance(dt, true, Some(before));
             // Retaken with half the warm start, then none: a cold step alone
             // would let a deep pile sag, and the next warm start overshoot.
             for share in [0.5, 0.0] {
@@ -493,7 +496,7 @@ impl World {
                 self.events.truncate(first_event);
                 self.warm.iter_mut().for_each(|w| w.weaken(share));
                 self.retakes += 1;
-                self.advance(dt, share > 0.0);
+                self.advance(dt, share > 0.0, Some(before));
             }
         }
         std::mem::swap(&mut self.warm, &mut self.warm_next);
@@ -568,9 +571,10 @@ impl World {
     }
 
     /// One step of the balls and tumblers, with or without a warm start.
-    fn advance(&mut self, dt: f64, warm_start: bool) {
+    /// With `start_energy`, the world's energy now, no part of the step may
+    /// make energy; without, the hand feeds some in anyway.
+    fn advance(&mut self, dt: f64, warm_start: bool, start_energy: Option<f64>) {
         let g = DVec3::new(0.0, -self.config.gravity, 0.0);
-        let start_energy = self.energy().total();
         self.grid.rebuild(&self.balls.position, &self.balls.alive);
         let first_event = self.events.len();
         self.enter_sorted_order();
@@ -619,13 +623,11 @@ impl World {
         self.record_warm_start(Stage::Project);
         self.report_contacts();
         // Pushing sunk balls apart lifts them: it may spend what the step
-        // has lost, no more, unless the hand feeds energy in anyway.
-        let budget = if self.grabbed().is_some() {
-            f64::INFINITY
-        } else {
-            let rounding = 1e-10 * start_energy.abs();
-            start_energy - self.energy().total() - rounding
-        };
+        // has lost, no more.
+        let budget = start_energy.map_or(f64::INFINITY, |start| {
+            let rounding = 1e-10 * start.abs();
+            start - self.energy().total() - rounding
+        });
         self.push_apart_sunk_balls(budget);
         self.separate_overlaps();
         self.leave_sorted_order(first_event);
@@ -784,15 +786,14 @@ impl World {
         let partners = &mut self.ball_partners;
         partners.clear();
         partners.resize(balls.len(), 0);
-        for p in contacts.bands.iter().flatten() {
-            partners[p.i as usize] = partners[p.i as usize].saturating_add(1);
-            partners[p.j as usize] = partners[p.j as usize].saturating_add(1);
-        }
-        for (i, &count) in partners.iter().enumerate() {
-            let crowded = count > 0;
-            if !balls.alive[i] {
-                continue;
+        contacts.sweep_slots(partners, &|p, partners, first| {
+            for k in [p.i as usize - first, p.j as usize - first] {
+                partners[k] = partners[k].saturating_add(1);
             }
+        });
+        let partners = &self.ball_partners;
+        let touch_walls = |i: usize, into: &mut Vec<Contact>| {
+            let crowded = partners[i] > 0;
             for s in Surface::ALL {
                 let gap = room.distance(s, balls.position[i]) - balls.radius[i];
                 let n = s.inward_normal();
@@ -812,9 +813,26 @@ impl World {
                         cfg.room.restitution,
                     );
                     c.friction = cfg.room.friction;
-                    contacts.others.push(c);
+                    into.push(c);
                 }
             }
+        };
+        // Layer by layer, each into its own list, then in layer order: the
+        // same contacts in the same order on any number of threads.
+        let layers = &contacts.layers;
+        let by_layer = &mut self.wall_contacts_by_layer;
+        by_layer.resize_with(layers.len() - 1, Vec::new);
+        let fill = |(z, into): (usize, &mut Vec<Contact>)| {
+            into.clear();
+            (layers[z]..layers[z + 1]).for_each(|i| touch_walls(i, into));
+        };
+        if balls.len() >= PARALLEL_BALLS {
+            by_layer.par_iter_mut().enumerate().for_each(fill);
+        } else {
+            by_layer.iter_mut().enumerate().for_each(fill);
+        }
+        for layer in by_layer.iter() {
+            contacts.others.extend_from_slice(layer);
         }
         contacts.ball_walls = contacts.others.len();
 
