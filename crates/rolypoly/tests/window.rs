@@ -33,11 +33,42 @@ fn tool(name: &str) -> PathBuf {
     })
 }
 
-/// Starts Xvfb on a free display number and returns it with its guard.
-fn start_display() -> (String, Guard) {
+/// A virtual X server, stopped when dropped. Killed, it leaves its lock
+/// and socket behind, so those go too: else every run would use up a
+/// display number for good.
+struct XServer {
+    server: Guard,
+    number: u32,
+}
+
+impl Drop for XServer {
+    fn drop(&mut self) {
+        let _ = self.server.0.kill();
+        let _ = self.server.0.wait();
+        let _ = std::fs::remove_file(lock_file(self.number));
+        let _ = std::fs::remove_file(format!("/tmp/.X11-unix/X{}", self.number));
+    }
+}
+
+fn lock_file(display: u32) -> PathBuf {
+    PathBuf::from(format!("/tmp/.X{display}-lock"))
+}
+
+/// Whether a running X server holds display `n`: its lock file names a live
+/// process. A lock left by a server that is gone does not count; Xvfb takes
+/// such a display over.
+fn display_taken(n: u32) -> bool {
+    std::fs::read_to_string(lock_file(n))
+        .ok()
+        .and_then(|pid| pid.trim().parse::<u32>().ok())
+        .is_some_and(|pid| PathBuf::from(format!("/proc/{pid}")).exists())
+}
+
+/// Starts Xvfb on a free display number and returns it with its server.
+fn start_display() -> (String, XServer) {
     let xvfb = tool("Xvfb");
     for n in 90..120 {
-        if PathBuf::from(format!("/tmp/.X{n}-lock")).exists() {
+        if display_taken(n) {
             continue;
         }
         let display = format!(":{n}");
@@ -54,7 +85,10 @@ fn start_display() -> (String, Guard) {
             .stderr(Stdio::null())
             .spawn()
             .expect("Xvfb starts");
-        let guard = Guard(child);
+        let guard = XServer {
+            server: Guard(child),
+            number: n,
+        };
         let deadline = Instant::now() + Duration::from_secs(10);
         while Instant::now() < deadline {
             let ok = Command::new(tool("xdotool"))
