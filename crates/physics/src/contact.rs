@@ -107,8 +107,6 @@ pub(crate) struct Pair {
     pub approach: f64,
     /// How much gravity's half step changed the relative normal velocity.
     pub kick: f64,
-    /// Effective mass along the normal.
-    pub mass: f64,
     pub impulse: f64,
     /// Normal impulse of the predict stage (> 0: the pair pushed).
     pub pushed: f64,
@@ -123,7 +121,6 @@ impl Pair {
             gap,
             approach: 0.0,
             kick: 0.0,
-            mass: 0.0,
             impulse: 0.0,
             pushed: 0.0,
         }
@@ -133,35 +130,30 @@ impl Pair {
     pub fn normal_velocity(&self, balls: &Balls) -> f64 {
         (balls.velocity[self.i as usize] - balls.velocity[self.j as usize]).dot(self.normal)
     }
-
-    fn prepare(&mut self, balls: &Balls) {
-        let w = balls.inv_mass[self.i as usize] + balls.inv_mass[self.j as usize];
-        self.mass = if w > 0.0 { 1.0 / w } else { 0.0 };
-    }
 }
 
-/// A pair as a solver stage iterates on it: only what the iterations read
-/// and write, two thirds of a [`Pair`], so that the sweeps over a crowd's
-/// pairs stream less memory.
+/// A pair as a solver stage iterates on it: only what the iterations read,
+/// two thirds of a [`Pair`]. A crowd's rows are streamed from memory once
+/// per iteration, and in a large pile that stream is much of the work.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PairRow {
     i: u32,
     j: u32,
     normal: DVec3,
+    /// Effective mass along the normal.
     mass: f64,
-    impulse: f64,
     /// The relative normal velocity the stage drives the pair to, at least.
     target: f64,
 }
 
 impl PairRow {
-    fn new(p: &Pair, target: f64, impulse: f64) -> PairRow {
+    fn new(p: &Pair, inv_mass: &[f64], target: f64) -> PairRow {
+        let w = inv_mass[p.i as usize] + inv_mass[p.j as usize];
         PairRow {
             i: p.i,
             j: p.j,
             normal: p.normal,
-            mass: p.mass,
-            impulse,
+            mass: if w > 0.0 { 1.0 / w } else { 0.0 },
             target,
         }
     }
@@ -174,18 +166,26 @@ impl PairRow {
         velocity[j - first] -= self.normal * (impulse * inv_mass[j]);
     }
 
-    /// One Gauss-Seidel update, as [`Bodies::solve_normal`] for two balls.
-    /// `velocity` holds the slots from `first` on; `inv_mass` all of them.
+    /// One Gauss-Seidel update of the row's accumulated `impulse`, as
+    /// [`Bodies::solve_normal`] for two balls. `velocity` holds the slots
+    /// from `first` on; `inv_mass` all of them.
     #[inline]
-    fn solve(&mut self, velocity: &mut [DVec3], first: usize, inv_mass: &[f64]) {
+    fn solve(&self, impulse: &mut f64, velocity: &mut [DVec3], first: usize, inv_mass: &[f64]) {
         let (i, j) = (self.i as usize, self.j as usize);
-        let (vi, vj) = (i - first, j - first);
-        let vn = (velocity[vi] - velocity[vj]).dot(self.normal);
-        let delta = accumulate(&mut self.impulse, self.mass, vn, self.target);
-        if delta != 0.0 {
-            self.push(velocity, first, inv_mass, delta);
-        }
+        let vn = (velocity[i - first] - velocity[j - first]).dot(self.normal);
+        let delta = accumulate(impulse, self.mass, vn, self.target);
+        // Applied even when zero: whether it is cannot be foreseen, and a
+        // branch that guesses wrong costs more than the arithmetic.
+        self.push(velocity, first, inv_mass, delta);
     }
+}
+
+/// The rows of one band, and the impulse each has accumulated: apart, so
+/// that the rows are only read and their memory never written back.
+#[derive(Clone, Debug, Default)]
+struct RowBand {
+    rows: Vec<PairRow>,
+    impulses: Vec<f64>,
 }
 
 /// The Gauss-Seidel update of every normal contact: the impulse that drives
@@ -211,13 +211,13 @@ pub(crate) const PARALLEL_PAIRS: usize = 4096;
 /// apart share no ball: the even bands are swept side by side, then the odd
 /// ones. Each band's own pairs are solved in order, so the result is
 /// bit-identical on any number of threads.
-fn sweep_bands<T, S, F>(bands: &mut [Vec<T>], layers: &[usize], velocity: &mut [S], solve: &F)
+fn sweep_bands<B, S, F>(bands: &mut [B], layers: &[usize], velocity: &mut [S], solve: &F)
 where
-    T: Send,
+    B: Band,
     S: Send,
-    F: Fn(&mut T, &mut [S], usize) + Sync,
+    F: Fn(&mut B, &mut [S], usize) + Sync,
 {
-    let parallel = bands.iter().map(Vec::len).sum::<usize>() >= PARALLEL_PAIRS;
+    let parallel = bands.iter().map(Band::items).sum::<usize>() >= PARALLEL_PAIRS;
     for parity in 0..2 {
         if parity >= bands.len() {
             break;
@@ -239,22 +239,22 @@ where
 /// Sweeps `count` bands: `bands[0]`, `bands[2]`, ..., whose balls start at
 /// slot `layers[0]` (the first slot of `velocity`), splitting the work in
 /// halves across threads.
-fn sweep_alternate<T, S, F>(
-    bands: &mut [Vec<T>],
+fn sweep_alternate<B, S, F>(
+    bands: &mut [B],
     layers: &[usize],
     velocity: &mut [S],
     count: usize,
     parallel: bool,
     solve: &F,
 ) where
-    T: Send,
+    B: Band,
     S: Send,
-    F: Fn(&mut T, &mut [S], usize) + Sync,
+    F: Fn(&mut B, &mut [S], usize) + Sync,
 {
     if count >= 2 && parallel {
         // Split where the pairs, not the bands, are halved: piles fill some
         // layers much more than others.
-        let pairs = |k: usize| bands[2 * k].len();
+        let pairs = |k: usize| bands[2 * k].items();
         let total: usize = (0..count).map(pairs).sum();
         let mut half = 0;
         let mut left = 0;
@@ -283,10 +283,42 @@ fn sweep_alternate<T, S, F>(
         return;
     }
     for k in 0..count {
-        for p in bands[2 * k].iter_mut() {
-            solve(p, velocity, layers[0]);
-        }
+        solve(&mut bands[2 * k], velocity, layers[0]);
     }
+}
+
+/// What [`sweep_bands`] sweeps: bands of items, each a contact between two
+/// balls, split between threads by their counts.
+trait Band: Send {
+    fn items(&self) -> usize;
+}
+
+impl Band for Vec<Pair> {
+    fn items(&self) -> usize {
+        self.len()
+    }
+}
+
+impl Band for RowBand {
+    fn items(&self) -> usize {
+        self.rows.len()
+    }
+}
+
+/// Calls `visit` on the items `0..count` of a band, its four quarters taken
+/// in turn. Items next to each other in a band mostly share a ball, and
+/// each would wait for the last one's write to it; the quarters lie apart
+/// in space, so the processor works on four at once.
+#[inline]
+fn in_four_streams<F: FnMut(usize)>(count: usize, mut visit: F) {
+    let quarter = count / 4;
+    for k in 0..quarter {
+        visit(k);
+        visit(k + quarter);
+        visit(k + 2 * quarter);
+        visit(k + 3 * quarter);
+    }
+    (4 * quarter..count).for_each(visit);
 }
 
 /// All contacts of a step: ball pairs in bands, then every other kind.
@@ -306,7 +338,7 @@ pub(crate) struct Contacts {
     pub others: Vec<Contact>,
     pub ball_walls: usize,
     /// Per band, the pairs a solver stage iterates on (see [`PairRow`]).
-    rows: Vec<Vec<PairRow>>,
+    rows: Vec<RowBand>,
 }
 
 impl Contacts {
@@ -375,7 +407,10 @@ impl Contacts {
         S: Send,
         F: Fn(&mut Pair, &mut [S], usize) + Sync,
     {
-        sweep_bands(&mut self.bands, &self.layers, slots, solve);
+        let band = |band: &mut Vec<Pair>, slots: &mut [S], first: usize| {
+            band.iter_mut().for_each(|p| solve(p, slots, first));
+        };
+        sweep_bands(&mut self.bands, &self.layers, slots, &band);
     }
 
     /// Fills the rows from the pairs that `row` chooses, band by band and in
@@ -385,23 +420,28 @@ impl Contacts {
     where
         F: Fn(&Pair) -> Option<(f64, f64)> + Sync,
     {
-        self.rows.resize_with(self.bands.len(), Vec::new);
-        let build =
-            |(band, rows): (&Vec<Pair>, &mut Vec<PairRow>)| {
-                rows.clear();
-                rows.extend(band.iter().filter_map(|p| {
-                    row(p).map(|(target, impulse)| PairRow::new(p, target, impulse))
-                }));
-            };
+        self.rows.resize_with(self.bands.len(), RowBand::default);
+        let inv_mass = &balls.inv_mass;
+        let build = |(band, rows): (&Vec<Pair>, &mut RowBand)| {
+            rows.rows.clear();
+            rows.impulses.clear();
+            for p in band {
+                if let Some((target, impulse)) = row(p) {
+                    rows.rows.push(PairRow::new(p, inv_mass, target));
+                    rows.impulses.push(impulse);
+                }
+            }
+        };
         if self.pair_count() >= PARALLEL_PAIRS {
             self.bands.par_iter().zip(&mut self.rows).for_each(build);
         } else {
             self.bands.iter().zip(&mut self.rows).for_each(build);
         }
-        let inv_mass = &balls.inv_mass;
-        let start = |r: &mut PairRow, velocity: &mut [DVec3], first: usize| {
-            if r.impulse > 0.0 {
-                r.push(velocity, first, inv_mass, r.impulse);
+        let start = |band: &mut RowBand, velocity: &mut [DVec3], first: usize| {
+            for (r, &impulse) in band.rows.iter().zip(&band.impulses) {
+                if impulse > 0.0 {
+                    r.push(velocity, first, inv_mass, impulse);
+                }
             }
         };
         sweep_bands(&mut self.rows, &self.layers, &mut balls.velocity, &start);
@@ -410,8 +450,11 @@ impl Contacts {
     /// One Gauss-Seidel sweep over the rows (see [`sweep_bands`]).
     fn sweep_rows(&mut self, balls: &mut Balls) {
         let inv_mass = &balls.inv_mass;
-        let solve = |r: &mut PairRow, velocity: &mut [DVec3], first: usize| {
-            r.solve(velocity, first, inv_mass)
+        let solve = |band: &mut RowBand, velocity: &mut [DVec3], first: usize| {
+            let (rows, impulses) = (&band.rows, &mut band.impulses[..]);
+            in_four_streams(rows.len(), |k| {
+                rows[k].solve(&mut impulses[k], velocity, first, inv_mass)
+            });
         };
         sweep_bands(&mut self.rows, &self.layers, &mut balls.velocity, &solve);
     }
@@ -424,11 +467,11 @@ impl Contacts {
         F: Fn(&Pair) -> bool + Sync,
         G: Fn(&mut Pair, f64) + Sync,
     {
-        let hand = |(band, rows): (&mut Vec<Pair>, &Vec<PairRow>)| {
-            let mut rows = rows.iter();
+        let hand = |(band, rows): (&mut Vec<Pair>, &RowBand)| {
+            let mut impulses = rows.impulses.iter();
             for p in band.iter_mut() {
                 let impulse = if chosen(p) {
-                    rows.next().map_or(0.0, |r| r.impulse)
+                    impulses.next().copied().unwrap_or(0.0)
                 } else {
                     0.0
                 };
@@ -781,16 +824,16 @@ pub(crate) fn solve_predict(
     let touching =
         |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
     let balls = &*bodies.balls;
-    let prepare = |band: &mut Vec<Pair>| {
+    // How much gravity's half step changed each pair's normal velocity.
+    let measure_kick = |band: &mut Vec<Pair>| {
         for p in band.iter_mut() {
-            p.prepare(balls);
             p.kick = p.normal_velocity(balls) - p.approach;
         }
     };
     if contacts.pair_count() >= PARALLEL_PAIRS {
-        contacts.bands.par_iter_mut().for_each(prepare);
+        contacts.bands.par_iter_mut().for_each(measure_kick);
     } else {
-        contacts.bands.iter_mut().for_each(prepare);
+        contacts.bands.iter_mut().for_each(measure_kick);
     }
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
     if contacts.others.iter().any(Contact::involves_tumbler) {
@@ -955,8 +998,7 @@ pub(crate) fn solve_project(
             bodies.prepare(c);
         }
     }
-    // Only the pairs that pushed take part; their masses are the predict
-    // stage's.
+    // Only the pairs that pushed take part.
     // A bouncing pair starts cold: its impulse is of this impact alone.
     let crowd = &*crowd;
     contacts.start_rows(bodies.balls, |p| {
