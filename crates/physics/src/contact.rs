@@ -17,7 +17,7 @@
 use crate::balls::{Balls, sphere_inertia};
 use crate::room::Surface;
 use crate::tumbler::{Response, Tumbler, TumblerShape};
-use crate::warm::WarmStart;
+use crate::warm::{WarmStart, pair_owner};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
@@ -941,7 +941,7 @@ fn warm_start_walls(
 /// Keeps the impulses of `stage` for the next step's warm start, into a
 /// `warm` begun for this step's slots.
 pub(crate) fn record_warm_start(
-    contacts: &Contacts,
+    contacts: &mut Contacts,
     warm: &mut WarmStart,
     ids: &[u32],
     stage: Stage,
@@ -950,9 +950,12 @@ pub(crate) fn record_warm_start(
         Stage::Predict => pushed,
         Stage::Project => impulse,
     };
-    for p in contacts.pairs() {
-        warm.record_pair(p.i as usize, p.j as usize, ids, of(p.pushed, p.impulse));
-    }
+    // A pair is kept by one of its own balls' slots, so the pairs are
+    // recorded on all threads as they are solved.
+    contacts.sweep_slots(warm.slots_mut(), &|p, slots, first| {
+        let (owner, partner) = pair_owner(p.i as usize, p.j as usize, ids);
+        slots[owner - first].record_partner(partner, of(p.pushed, p.impulse));
+    });
     for c in &contacts.others {
         if let (BodyRef::Ball(i), BodyRef::Wall(s)) = (c.a, c.b) {
             warm.record_wall(i, s, of(c.pushed, c.impulse));

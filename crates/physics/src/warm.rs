@@ -13,6 +13,7 @@
 //! step's motion.
 
 use crate::room::Surface;
+use rayon::prelude::*;
 
 /// Last step's normal impulses of ball pairs and ball-wall contacts.
 ///
@@ -23,20 +24,53 @@ use crate::room::Surface;
 pub(crate) struct WarmStart {
     /// Per ball number: its slot last step (`NONE`: it had none).
     slot_of: Vec<u32>,
-    /// Per slot: the balls of later slots it pushed (by number), and how hard.
-    partners: Vec<[u32; WarmStart::PARTNERS]>,
-    impulses: Vec<[f32; WarmStart::PARTNERS]>,
-    count: Vec<u8>,
-    /// Per slot and surface (in [`Surface::ALL`] order).
-    walls: Vec<[f32; 6]>,
+    slots: Vec<WarmSlot>,
     /// The share of each impulse that a lookup gives (see [`WarmStart::weaken`]).
     strength: f64,
 }
 
-impl WarmStart {
+/// What the ball in one slot pushed last step: together, so that a lookup
+/// reads one place.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct WarmSlot {
+    count: u8,
+    /// The balls of later slots it pushed (by number), and how hard.
+    partners: [u32; WarmSlot::PARTNERS],
+    impulses: [f32; WarmSlot::PARTNERS],
+    /// Per surface (in [`Surface::ALL`] order).
+    walls: [f32; 6],
+}
+
+impl WarmSlot {
     /// Equal spheres touch at most twelve others; a pair beyond that (only in
     /// a crushed pile) starts cold.
     const PARTNERS: usize = 12;
+
+    /// Records that this slot's ball pushed ball number `partner`, of a
+    /// later slot (see [`pair_owner`]).
+    pub fn record_partner(&mut self, partner: u32, impulse: f64) {
+        let n = self.count as usize;
+        if impulse > 0.0 && n < WarmSlot::PARTNERS {
+            self.partners[n] = partner;
+            self.impulses[n] = impulse as f32;
+            self.count += 1;
+        }
+    }
+
+    fn partner(&self, partner: u32) -> Option<f32> {
+        let n = self.count as usize;
+        let k = self.partners[..n].iter().position(|&p| p == partner)?;
+        Some(self.impulses[k])
+    }
+}
+
+/// Which slot keeps the impulse between the balls in slots `i` and `j`
+/// (the earlier), and the other ball's number.
+pub(crate) fn pair_owner(i: usize, j: usize, ids: &[u32]) -> (usize, u32) {
+    if i < j { (i, ids[j]) } else { (j, ids[i]) }
+}
+
+impl WarmStart {
     const NONE: u32 = u32::MAX;
 
     /// Forgets everything, ready to record a step whose slot `k` holds ball
@@ -47,14 +81,24 @@ impl WarmStart {
         for (slot, &id) in ids.iter().enumerate() {
             self.slot_of[id as usize] = slot as u32;
         }
-        let slots = ids.len();
-        self.partners.resize(slots, [0; WarmStart::PARTNERS]);
-        self.impulses.resize(slots, [0.0; WarmStart::PARTNERS]);
-        self.count.clear();
-        self.count.resize(slots, 0);
-        self.walls.clear();
-        self.walls.resize(slots, [0.0; 6]);
+        // Partners past a slot's count are never read: only counts restart.
+        self.slots.resize(ids.len(), WarmSlot::default());
+        let forget = |s: &mut WarmSlot| {
+            s.count = 0;
+            s.walls = [0.0; 6];
+        };
+        if ids.len() >= PARALLEL_SLOTS {
+            self.slots.par_iter_mut().for_each(forget);
+        } else {
+            self.slots.iter_mut().for_each(forget);
+        }
         self.strength = 1.0;
+    }
+
+    /// Every slot, to record the pairs' impulses in (see
+    /// [`WarmSlot::record_partner`]).
+    pub fn slots_mut(&mut self) -> &mut [WarmSlot] {
+        &mut self.slots
     }
 
     /// From now on, lookups give `share` of each impulse kept: a step that
@@ -76,43 +120,37 @@ impl WarmStart {
             return 0.0;
         };
         let (owner, partner) = if sa < sb { (sa, b) } else { (sb, a) };
-        let n = self.count[owner] as usize;
-        self.partners[owner][..n]
-            .iter()
-            .position(|&p| p == partner)
-            .map_or(0.0, |k| self.strength * self.impulses[owner][k] as f64)
+        self.slots[owner]
+            .partner(partner)
+            .map_or(0.0, |impulse| self.strength * impulse as f64)
     }
 
     /// Last step's impulse between ball number `ball` and surface `s`.
     pub fn wall(&self, ball: u32, s: Surface) -> f64 {
         self.slot(ball).map_or(0.0, |slot| {
-            self.strength * self.walls[slot][s.index()] as f64
+            self.strength * self.slots[slot].walls[s.index()] as f64
         })
-    }
-
-    /// Records the impulse between the balls in slots `i` and `j`.
-    pub fn record_pair(&mut self, i: usize, j: usize, ids: &[u32], impulse: f64) {
-        if impulse <= 0.0 {
-            return;
-        }
-        let (owner, partner) = if i < j { (i, ids[j]) } else { (j, ids[i]) };
-        let n = self.count[owner] as usize;
-        if n < WarmStart::PARTNERS {
-            self.partners[owner][n] = partner;
-            self.impulses[owner][n] = impulse as f32;
-            self.count[owner] += 1;
-        }
     }
 
     /// Records the impulse between the ball in slot `i` and surface `s`.
     pub fn record_wall(&mut self, i: usize, s: Surface, impulse: f64) {
-        self.walls[i][s.index()] = impulse.max(0.0) as f32;
+        self.slots[i].walls[s.index()] = impulse.max(0.0) as f32;
     }
 }
+
+/// Below this many slots a warm start is begun on one thread.
+const PARALLEL_SLOTS: usize = 16384;
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    impl WarmStart {
+        fn record_pair(&mut self, i: usize, j: usize, ids: &[u32], impulse: f64) {
+            let (owner, partner) = pair_owner(i, j, ids);
+            self.slots[owner].record_partner(partner, impulse);
+        }
+    }
 
     #[test]
     fn impulses_are_found_by_ball_number_after_the_balls_change_slots() {

@@ -691,7 +691,7 @@ impl World {
         // In sorted order `self.sorted` holds every ball number.
         let warm = &mut self.warm_next[stage as usize];
         warm.begin(self.grid.order(), self.sorted.len());
-        record_warm_start(&self.contacts, warm, self.grid.order(), stage);
+        record_warm_start(&mut self.contacts, warm, self.grid.order(), stage);
     }
 
     /// What the solver works on, borrowed apart, with the warm start of
