@@ -364,6 +364,25 @@ impl Contacts {
         self.bands.iter().flatten()
     }
 
+    /// Fills `into` with the pairs that `choose` picks, in band order: a
+    /// search through every pair, on all threads, for the few that need
+    /// more than the solver gives them.
+    pub fn copy_pairs_where<F>(&self, choose: F, into: &mut Vec<Pair>)
+    where
+        F: Fn(&Pair) -> bool + Sync,
+    {
+        into.clear();
+        if self.pair_count() >= PARALLEL_PAIRS {
+            let chosen = self
+                .bands
+                .par_iter()
+                .flat_map_iter(|band| band.iter().filter(|p| choose(p)));
+            into.par_extend(chosen.copied());
+        } else {
+            into.extend(self.pairs().filter(|p| choose(p)).copied());
+        }
+    }
+
     /// Calls `solve(contact, ball)` for every ball-wall contact.
     ///
     /// A ball-wall contact moves its ball alone, so different balls' contacts

@@ -114,6 +114,9 @@ pub struct World {
     speed: Vec<f64>,
     /// Per ball: how many other balls it may touch this step (saturating).
     ball_partners: Vec<u8>,
+    /// The few pairs a pass after the solver picks out of them all (see
+    /// [`Contacts::copy_pairs_where`]).
+    picked_pairs: Vec<Pair>,
     /// Per ball: where it was before sunk balls were pushed apart.
     unpushed: Vec<DVec3>,
     /// Per grid layer: the contacts of its balls with the walls.
@@ -184,6 +187,7 @@ impl World {
             contacts: Contacts::default(),
             hit_wall: vec![false; b.count],
             ball_partners: Vec::new(),
+            picked_pairs: Vec::new(),
             unpushed: Vec::new(),
             wall_contacts_by_layer: Vec::new(),
             pair_spheres: Vec::new(),
@@ -363,13 +367,31 @@ impl World {
     pub fn energy(&self) -> Energy {
         let g = self.config.gravity;
         let floor = self.room.min.y;
-        let mut e = Energy::default();
-        for i in 0..self.balls.len() {
-            if self.balls.alive[i] {
-                e.kinetic += self.balls.kinetic_energy(i);
-                e.potential += self.balls.mass[i] * g * (self.balls.position[i].y - floor);
+        // In runs of a fixed length, added in order: the same sum on any
+        // number of threads.
+        const RUN: usize = 4096;
+        let balls = &self.balls;
+        let run = |r: usize| {
+            let mut e = Energy::default();
+            for i in r * RUN..((r + 1) * RUN).min(balls.len()) {
+                if balls.alive[i] {
+                    e.kinetic += balls.kinetic_energy(i);
+                    e.potential += balls.mass[i] * g * (balls.position[i].y - floor);
+                }
             }
-        }
+            e
+        };
+        let runs = balls.len().div_ceil(RUN);
+        let add = |a: Energy, b: Energy| Energy {
+            kinetic: a.kinetic + b.kinetic,
+            potential: a.potential + b.potential,
+        };
+        let mut e = if balls.len() >= PARALLEL_BALLS {
+            let parts: Vec<Energy> = (0..runs).into_par_iter().map(run).collect();
+            parts.into_iter().fold(Energy::default(), add)
+        } else {
+            (0..runs).map(run).fold(Energy::default(), add)
+        };
         for t in &self.tumblers {
             e.kinetic += t.kinetic_energy(&self.shape);
             e.potential += self.shape.mass * g * (t.center_of_mass().y - floor);
@@ -1091,10 +1113,10 @@ impl World {
     /// Events and colours from the contacts that pushed this step.
     fn report_contacts(&mut self) {
         let threshold = self.config.solver.event_threshold;
-        for p in self.contacts.pairs() {
-            if p.pushed <= 0.0 || -p.approach <= threshold {
-                continue;
-            }
+        let hits = &mut self.picked_pairs;
+        let hit = |p: &Pair| p.pushed > 0.0 && -p.approach > threshold;
+        self.contacts.copy_pairs_where(hit, hits);
+        for p in hits.iter() {
             let (i, j) = (p.i as usize, p.j as usize);
             let gap = p.gap.max(0.0);
             self.events.push(Event {
@@ -1196,17 +1218,14 @@ impl World {
     fn separate_overlaps(&mut self) {
         let shape = self.shape.clone();
         let shape = &shape;
-        for band in 0..self.contacts.bands.len() {
-            for k in 0..self.contacts.bands[band].len() {
-                let (i, j) = {
-                    let pair = &self.contacts.bands[band][k];
-                    (pair.i as usize, pair.j as usize)
-                };
-                if self.ball_partners[i] == 1 && self.ball_partners[j] == 1 {
-                    self.separate_balls(i, j);
-                }
-            }
+        let mut lone_pairs = std::mem::take(&mut self.picked_pairs);
+        let partners = &self.ball_partners;
+        let lone = |p: &Pair| partners[p.i as usize] == 1 && partners[p.j as usize] == 1;
+        self.contacts.copy_pairs_where(lone, &mut lone_pairs);
+        for p in &lone_pairs {
+            self.separate_balls(p.i as usize, p.j as usize);
         }
+        self.picked_pairs = lone_pairs;
         for k in 0..self.contacts.others.len() {
             let c = &self.contacts.others[k];
             match (c.a, c.b) {
