@@ -58,9 +58,8 @@ pub(crate) struct Contact {
     pub pushed: f64,
     /// Whether the project stage bounces this contact.
     pub bounce: bool,
-    /// Coulomb friction (ball-wall contacts only) and its accumulated impulses.
+    /// Coulomb friction (ball-wall contacts only).
     pub friction: f64,
-    pub friction_impulse: [f64; 2],
 }
 
 impl Contact {
@@ -88,7 +87,6 @@ impl Contact {
             pushed: 0.0,
             bounce: false,
             friction: 0.0,
-            friction_impulse: [0.0; 2],
         }
     }
 }
@@ -339,6 +337,8 @@ pub(crate) struct Contacts {
     pub ball_walls: usize,
     /// Per band, the pairs a solver stage iterates on (see [`PairRow`]).
     rows: Vec<RowBand>,
+    /// The ball-wall contacts a solver stage iterates on (see [`WallRow`]).
+    wall_rows: WallRows,
 }
 
 impl Contacts {
@@ -383,29 +383,69 @@ impl Contacts {
         }
     }
 
-    /// Calls `solve(contact, ball)` for every ball-wall contact.
+    /// Fills the wall rows from the ball-wall contacts that `row` chooses,
+    /// in order, with the target and friction coefficient it gives them;
+    /// each starts from its contact's impulse, applied already.
+    fn start_wall_rows<F>(&mut self, balls: &Balls, row: F)
+    where
+        F: Fn(&Contact) -> Option<(f64, f64)> + Sync,
+    {
+        let walls = &self.others[..self.ball_walls];
+        let build = |c: &Contact| {
+            let i = ball_of(c)?;
+            let BodyRef::Wall(surface) = c.b else {
+                return None;
+            };
+            let (target, friction) = row(c)?;
+            let row = WallRow::new(i, surface, balls, target, friction);
+            Some((row, WallImpulse::starting(c.impulse)))
+        };
+        let WallRows { rows, impulses } = &mut self.wall_rows;
+        let mut built = (std::mem::take(rows), std::mem::take(impulses));
+        built.0.clear();
+        built.1.clear();
+        // In contact order on any number of threads.
+        if walls.len() >= PARALLEL_BALL_WALLS {
+            built.par_extend(walls.par_iter().filter_map(build));
+        } else {
+            built.extend(walls.iter().filter_map(build));
+        }
+        (*rows, *impulses) = built;
+    }
+
+    /// One Gauss-Seidel sweep over the wall rows.
     ///
-    /// A ball-wall contact moves its ball alone, so different balls' contacts
+    /// A ball-wall contact moves its ball alone, so different balls' rows
     /// are solved side by side; each ball's own in their order, which keeps
     /// the result the same on any number of threads.
-    fn sweep_walls<F>(&mut self, balls: &mut Balls, solve: F)
-    where
-        F: Fn(&mut Contact, BallMotion) + Sync,
-    {
+    fn sweep_wall_rows(&mut self, balls: &mut Balls) {
         let parallel =
-            self.ball_walls >= PARALLEL_BALL_WALLS && self.pair_count() >= PARALLEL_PAIRS;
-        let walls = &mut self.others[..self.ball_walls];
+            self.wall_rows.rows.len() >= PARALLEL_BALL_WALLS && self.pair_count() >= PARALLEL_PAIRS;
+        let frames = Surface::ALL.map(WallFrame::of);
+        let WallRows { rows, impulses } = &mut self.wall_rows;
         let view = BallSlices {
             velocity: &mut balls.velocity,
             spin: &mut balls.spin,
             first: 0,
         };
-        let builds = BallBuilds {
-            radius: &balls.radius,
-            mass: &balls.mass,
-            inv_mass: &balls.inv_mass,
-        };
-        sweep_ball_walls(walls, view, builds, parallel, &solve);
+        sweep_wall_rows(rows, impulses, view, &frames, parallel);
+    }
+
+    /// Hands each ball-wall contact its row's normal impulse, 0 for the
+    /// contacts without a row; `chosen` tells them as in
+    /// [`Contacts::start_wall_rows`].
+    fn keep_wall_impulses<F>(&mut self, chosen: F)
+    where
+        F: Fn(&Contact) -> bool,
+    {
+        let mut impulses = self.wall_rows.impulses.iter();
+        for c in &mut self.others[..self.ball_walls] {
+            c.impulse = if chosen(c) {
+                impulses.next().map_or(0.0, |k| k.normal)
+            } else {
+                0.0
+            };
+        }
     }
 
     /// Calls `solve(contact, bodies)` for every contact with a tumbler.
@@ -586,43 +626,120 @@ impl Bodies<'_> {
     }
 }
 
-/// One ball's motion and build, for a contact that moves that ball alone.
-struct BallMotion<'a> {
-    velocity: &'a mut DVec3,
-    spin: &'a mut DVec3,
-    radius: f64,
+/// A ball-wall contact as a solver stage iterates on it: as [`PairRow`],
+/// only what the iterations read, with its ball's build worked out once
+/// (divisions are slow).
+#[derive(Clone, Copy, Debug)]
+struct WallRow {
+    slot: u32,
+    surface: Surface,
+    /// The ball's mass and its inverse: the wall does not move.
     mass: f64,
     inv_mass: f64,
+    /// The normal velocity the stage drives the ball to, at least.
+    target: f64,
+    /// Coulomb friction coefficient (0: the stage solves no friction).
+    friction: f64,
+    radius: f64,
+    inv_inertia: f64,
+    /// Mass along a tangent at the contact point: 2m/7 for a solid sphere.
+    tangent_mass: f64,
 }
 
-impl BallMotion<'_> {
-    /// [`Bodies::solve_normal`] for a contact of this ball with a wall.
-    #[inline]
-    fn solve_normal(&mut self, c: &mut Contact, target: f64) {
-        let delta = accumulate(&mut c.impulse, c.mass, self.velocity.dot(c.normal), target);
-        if delta != 0.0 {
-            *self.velocity += c.normal * (delta * self.inv_mass);
+/// A wall row's accumulated impulses: along the normal and the two tangents.
+#[derive(Clone, Copy, Debug, Default)]
+struct WallImpulse {
+    normal: f64,
+    friction: [f64; 2],
+}
+
+impl WallImpulse {
+    fn starting(normal: f64) -> WallImpulse {
+        WallImpulse {
+            normal,
+            friction: [0.0; 2],
+        }
+    }
+}
+
+/// The wall rows of a stage, and the impulses each has accumulated (apart,
+/// as in [`RowBand`]).
+#[derive(Clone, Debug, Default)]
+struct WallRows {
+    rows: Vec<WallRow>,
+    impulses: Vec<WallImpulse>,
+}
+
+/// A surface's inward normal, the two tangents friction acts along, and
+/// the axes about which friction along each turns a ball (normal x tangent).
+#[derive(Clone, Copy, Debug)]
+struct WallFrame {
+    normal: DVec3,
+    tangents: [DVec3; 2],
+    turns: [DVec3; 2],
+}
+
+impl WallFrame {
+    fn of(surface: Surface) -> WallFrame {
+        let normal = surface.inward_normal();
+        let (t1, t2) = normal.any_orthonormal_pair();
+        WallFrame {
+            normal,
+            tangents: [t1, t2],
+            turns: [normal.cross(t1), normal.cross(t2)],
+        }
+    }
+}
+
+impl WallRow {
+    fn new(slot: usize, surface: Surface, balls: &Balls, target: f64, friction: f64) -> WallRow {
+        let (mass, inv_mass, radius) = (balls.mass[slot], balls.inv_mass[slot], balls.radius[slot]);
+        let inv_inertia = 1.0 / sphere_inertia(mass, radius);
+        WallRow {
+            slot: slot as u32,
+            surface,
+            mass: if inv_mass > 0.0 { 1.0 / inv_mass } else { 0.0 },
+            inv_mass,
+            target,
+            friction,
+            radius,
+            inv_inertia,
+            tangent_mass: 1.0 / (inv_mass + radius * radius * inv_inertia),
         }
     }
 
-    /// Coulomb friction between the ball and a wall, at the contact point,
-    /// so that a sliding ball starts to roll.
-    fn solve_friction(&mut self, c: &mut Contact) {
-        let n = c.normal;
-        let (r, m) = (self.radius, self.mass);
-        let inertia = sphere_inertia(m, r);
-        let arm = -r * n;
-        let (t1, t2) = n.any_orthonormal_pair();
-        let limit = c.friction * c.impulse;
-        // Solid sphere: tangential effective mass is 2m/7.
-        let tangent_mass = 1.0 / (1.0 / m + r * r / inertia);
-        for (k, t) in [t1, t2].into_iter().enumerate() {
-            let slip = *self.velocity + self.spin.cross(arm);
-            let total = (c.friction_impulse[k] - tangent_mass * slip.dot(t)).clamp(-limit, limit);
-            let delta = total - c.friction_impulse[k];
-            c.friction_impulse[k] = total;
-            *self.velocity += t * (delta / m);
-            *self.spin += arm.cross(t * delta) / inertia;
+    /// One Gauss-Seidel update of the row, as [`Bodies::solve_normal`] for a
+    /// ball on a wall, then Coulomb friction at the contact point, so that
+    /// a sliding ball starts to roll.
+    #[inline]
+    fn solve(
+        &self,
+        impulse: &mut WallImpulse,
+        velocity: &mut DVec3,
+        spin: &mut DVec3,
+        frame: &WallFrame,
+    ) {
+        let n = frame.normal;
+        let delta = accumulate(&mut impulse.normal, self.mass, velocity.dot(n), self.target);
+        *velocity += n * (delta * self.inv_mass);
+        let limit = self.friction * impulse.normal;
+        if limit == 0.0 && impulse.friction == [0.0; 2] {
+            // Nothing to hold and nothing held: most speculative contacts.
+            return;
+        }
+        // The contact point lies at -radius n: its slip along t is
+        // v.t + (spin x -rn).t = v.t - r spin.(n x t), and an impulse along
+        // t there turns the ball about -(n x t).
+        let r = self.radius;
+        for k in 0..2 {
+            let (t, turn) = (frame.tangents[k], frame.turns[k]);
+            let held = &mut impulse.friction[k];
+            let slip = velocity.dot(t) - r * spin.dot(turn);
+            let total = (*held - self.tangent_mass * slip).clamp(-limit, limit);
+            let delta = total - *held;
+            *held = total;
+            *velocity += t * (delta * self.inv_mass);
+            *spin -= turn * (r * delta * self.inv_inertia);
         }
     }
 }
@@ -638,14 +755,6 @@ struct BallSlices<'a> {
     first: usize,
 }
 
-/// What every ball is made of, by slot: read alike by all threads.
-#[derive(Clone, Copy)]
-struct BallBuilds<'a> {
-    radius: &'a [f64],
-    mass: &'a [f64],
-    inv_mass: &'a [f64],
-}
-
 /// The ball a ball-wall contact moves.
 fn ball_of(c: &Contact) -> Option<usize> {
     match c.a {
@@ -654,24 +763,23 @@ fn ball_of(c: &Contact) -> Option<usize> {
     }
 }
 
-/// Solves ball-wall contacts (in slot order) whose balls lie in `balls`,
-/// halving the work across threads between two balls.
-fn sweep_ball_walls<F>(
-    walls: &mut [Contact],
+/// Solves wall rows (in slot order) whose balls lie in `balls`, halving the
+/// work across threads between two balls.
+fn sweep_wall_rows(
+    rows: &[WallRow],
+    impulses: &mut [WallImpulse],
     balls: BallSlices,
-    builds: BallBuilds,
+    frames: &[WallFrame; 6],
     parallel: bool,
-    solve: &F,
-) where
-    F: Fn(&mut Contact, BallMotion) + Sync,
-{
-    if parallel && walls.len() >= PARALLEL_BALL_WALLS / 2 {
-        let mut half = walls.len() / 2;
-        while half < walls.len() && ball_of(&walls[half]) == ball_of(&walls[half - 1]) {
+) {
+    if parallel && rows.len() >= PARALLEL_BALL_WALLS / 2 {
+        let mut half = rows.len() / 2;
+        while half < rows.len() && rows[half].slot == rows[half - 1].slot {
             half += 1;
         }
-        if let Some(split) = walls.get(half).and_then(ball_of) {
-            let (left, right) = walls.split_at_mut(half);
+        if let Some(split) = rows.get(half).map(|r| r.slot as usize) {
+            let (left, right) = rows.split_at(half);
+            let (left_impulses, right_impulses) = impulses.split_at_mut(half);
             let (lv, rv) = balls.velocity.split_at_mut(split - balls.first);
             let (ls, rs) = balls.spin.split_at_mut(split - balls.first);
             let (left_balls, right_balls) = (
@@ -687,23 +795,16 @@ fn sweep_ball_walls<F>(
                 },
             );
             rayon::join(
-                || sweep_ball_walls(left, left_balls, builds, parallel, solve),
-                || sweep_ball_walls(right, right_balls, builds, parallel, solve),
+                || sweep_wall_rows(left, left_impulses, left_balls, frames, parallel),
+                || sweep_wall_rows(right, right_impulses, right_balls, frames, parallel),
             );
             return;
         }
     }
-    for c in walls {
-        let Some(i) = ball_of(c) else { continue };
-        let k = i - balls.first;
-        let ball = BallMotion {
-            velocity: &mut balls.velocity[k],
-            spin: &mut balls.spin[k],
-            radius: builds.radius[i],
-            mass: builds.mass[i],
-            inv_mass: builds.inv_mass[i],
-        };
-        solve(c, ball);
+    for (row, impulse) in rows.iter().zip(impulses) {
+        let k = row.slot as usize - balls.first;
+        let frame = &frames[row.surface.index()];
+        row.solve(impulse, &mut balls.velocity[k], &mut balls.spin[k], frame);
     }
 }
 
@@ -861,7 +962,6 @@ pub(crate) fn solve_predict(
     for c in contacts.others.iter_mut() {
         bodies.prepare(c);
         c.impulse = 0.0;
-        c.friction_impulse = [0.0; 2];
         // Gravity's half step, which the contact's two sides may not share.
         c.kick = bodies.normal_velocity(c) - c.approach;
         if touching(c.gap, c.approach, c.kick) {
@@ -891,16 +991,13 @@ pub(crate) fn solve_predict(
             0.0
         }
     };
+    contacts.start_wall_rows(bodies.balls, |c| Some((target(c), c.friction)));
     for _ in 0..iterations {
-        contacts.sweep_walls(bodies.balls, |c, mut ball| {
-            ball.solve_normal(c, target(c));
-            if c.friction > 0.0 {
-                ball.solve_friction(c);
-            }
-        });
+        contacts.sweep_wall_rows(bodies.balls);
         contacts.sweep_rows(bodies.balls);
         contacts.sweep_tumblers(bodies, |c, bodies| bodies.solve_normal(c, target(c)));
     }
+    contacts.keep_wall_impulses(|_| true);
     contacts.keep_row_impulses(
         |_| true,
         |p, impulse| {
@@ -1046,12 +1143,11 @@ pub(crate) fn solve_project(
             0.0
         }
     };
+    // Friction acted in the predict stage; here contacts only end bouncing
+    // or at rest.
+    contacts.start_wall_rows(bodies.balls, |c| (c.pushed > 0.0).then(|| (target(c), 0.0)));
     for _ in 0..iterations {
-        contacts.sweep_walls(bodies.balls, |c, mut ball| {
-            if c.pushed > 0.0 {
-                ball.solve_normal(c, target(c));
-            }
-        });
+        contacts.sweep_wall_rows(bodies.balls);
         contacts.sweep_rows(bodies.balls);
         contacts.sweep_tumblers(bodies, |c, bodies| {
             if c.pushed > 0.0 {
@@ -1060,4 +1156,5 @@ pub(crate) fn solve_project(
         });
     }
     contacts.keep_row_impulses(|p| p.pushed > 0.0, |p, impulse| p.impulse = impulse);
+    contacts.keep_wall_impulses(|c| c.pushed > 0.0);
 }
