@@ -1,6 +1,9 @@
 //! Contacts and the sequential-impulse solver that resolves them.
 //!
 //! A contact joins a ball or tumbler (`a`) to a ball, tumbler or wall (`b`).
+//! The two kinds that crowd a room, ball against ball ([`Pair`]) and ball
+//! against wall ([`WallContact`]), have small types of their own, solved
+//! as rows that hold only what an iteration reads ([`PairRow`], [`WallRow`]).
 //! The solver runs in two stages per step:
 //!
 //! 1. **predict**, on the velocities that will carry the bodies through the
@@ -58,8 +61,6 @@ pub(crate) struct Contact {
     pub pushed: f64,
     /// Whether the project stage bounces this contact.
     pub bounce: bool,
-    /// Coulomb friction (ball-wall contacts only).
-    pub friction: f64,
 }
 
 impl Contact {
@@ -86,7 +87,6 @@ impl Contact {
             impulse: 0.0,
             pushed: 0.0,
             bounce: false,
-            friction: 0.0,
         }
     }
 }
@@ -127,6 +127,48 @@ impl Pair {
     /// Relative normal velocity (negative: approaching).
     pub fn normal_velocity(&self, balls: &Balls) -> f64 {
         (balls.velocity[self.i as usize] - balls.velocity[self.j as usize]).dot(self.normal)
+    }
+}
+
+/// A ball touching one of the room's walls, or about to: the second most
+/// common contact in a crowded room, so it is kept small; the normal,
+/// restitution and friction are the wall's.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct WallContact {
+    pub ball: u32,
+    pub surface: Surface,
+    /// Whether the project stage bounces this contact.
+    pub bounce: bool,
+    /// Distance between the ball and the wall at the start of the step
+    /// (negative: overlap).
+    pub gap: f64,
+    /// The ball's normal velocity before the step (negative: approaching).
+    pub approach: f64,
+    /// How much gravity's half step changed the normal velocity.
+    pub kick: f64,
+    /// Accumulated normal impulse of the current stage.
+    pub impulse: f64,
+    /// Normal impulse of the predict stage (> 0: the contact pushed).
+    pub pushed: f64,
+}
+
+impl WallContact {
+    pub fn new(ball: usize, surface: Surface, gap: f64, approach: f64) -> WallContact {
+        WallContact {
+            ball: ball as u32,
+            surface,
+            bounce: false,
+            gap,
+            approach,
+            kick: 0.0,
+            impulse: 0.0,
+            pushed: 0.0,
+        }
+    }
+
+    /// Unit normal from the wall towards the ball.
+    pub fn normal(&self) -> DVec3 {
+        self.surface.inward_normal()
     }
 }
 
@@ -319,7 +361,8 @@ fn in_four_streams<F: FnMut(usize)>(count: usize, mut visit: F) {
     (4 * quarter..count).for_each(visit);
 }
 
-/// All contacts of a step: ball pairs in bands, then every other kind.
+/// All contacts of a step: ball pairs in bands, balls against walls, and
+/// every contact with a tumbler.
 ///
 /// Band `z` holds the pairs found from the cells of grid layer `z` (see
 /// [`crate::broadphase::Grid::layer_slots`]): they join balls of layers `z`
@@ -331,10 +374,13 @@ pub(crate) struct Contacts {
     pub layers: Vec<usize>,
     /// Pairs in all bands, counted once they are filled.
     pair_count: usize,
-    /// Every other contact; the first `ball_walls` join a ball to a wall, in
-    /// slot order, and the rest involve a tumbler.
+    /// Balls against walls, in slot order.
+    pub walls: Vec<WallContact>,
+    /// What every wall contact is made of: the room's restitution and friction.
+    pub wall_restitution: f64,
+    pub wall_friction: f64,
+    /// Every other contact: each involves a tumbler.
     pub others: Vec<Contact>,
-    pub ball_walls: usize,
     /// Per band, the pairs a solver stage iterates on (see [`PairRow`]).
     rows: Vec<RowBand>,
     /// The ball-wall contacts a solver stage iterates on (see [`WallRow`]).
@@ -347,8 +393,8 @@ impl Contacts {
         self.bands.resize_with(layers, Vec::new);
         self.bands.iter_mut().for_each(Vec::clear);
         self.pair_count = 0;
+        self.walls.clear();
         self.others.clear();
-        self.ball_walls = 0;
     }
 
     /// Counts the pairs once the bands are filled.
@@ -388,16 +434,12 @@ impl Contacts {
     /// each starts from its contact's impulse, applied already.
     fn start_wall_rows<F>(&mut self, balls: &Balls, row: F)
     where
-        F: Fn(&Contact) -> Option<(f64, f64)> + Sync,
+        F: Fn(&WallContact) -> Option<(f64, f64)> + Sync,
     {
-        let walls = &self.others[..self.ball_walls];
-        let build = |c: &Contact| {
-            let i = ball_of(c)?;
-            let BodyRef::Wall(surface) = c.b else {
-                return None;
-            };
+        let walls = &self.walls;
+        let build = |c: &WallContact| {
             let (target, friction) = row(c)?;
-            let row = WallRow::new(i, surface, balls, target, friction);
+            let row = WallRow::new(c.ball as usize, c.surface, balls, target, friction);
             Some((row, WallImpulse::starting(c.impulse)))
         };
         let WallRows { rows, impulses } = &mut self.wall_rows;
@@ -436,10 +478,10 @@ impl Contacts {
     /// [`Contacts::start_wall_rows`].
     fn keep_wall_impulses<F>(&mut self, chosen: F)
     where
-        F: Fn(&Contact) -> bool,
+        F: Fn(&WallContact) -> bool,
     {
         let mut impulses = self.wall_rows.impulses.iter();
-        for c in &mut self.others[..self.ball_walls] {
+        for c in &mut self.walls {
             c.impulse = if chosen(c) {
                 impulses.next().map_or(0.0, |k| k.normal)
             } else {
@@ -453,7 +495,7 @@ impl Contacts {
     where
         G: FnMut(&mut Contact, &mut Bodies),
     {
-        for c in &mut self.others[self.ball_walls..] {
+        for c in &mut self.others {
             solve(c, bodies);
         }
     }
@@ -542,12 +584,6 @@ impl Contacts {
         } else {
             self.bands.iter_mut().zip(&self.rows).for_each(hand);
         }
-    }
-}
-
-impl Contact {
-    fn involves_tumbler(&self) -> bool {
-        matches!(self.a, BodyRef::Tumbler(..)) || matches!(self.b, BodyRef::Tumbler(..))
     }
 }
 
@@ -755,14 +791,6 @@ struct BallSlices<'a> {
     first: usize,
 }
 
-/// The ball a ball-wall contact moves.
-fn ball_of(c: &Contact) -> Option<usize> {
-    match c.a {
-        BodyRef::Ball(i) => Some(i),
-        _ => None,
-    }
-}
-
 /// Solves wall rows (in slot order) whose balls lie in `balls`, halving the
 /// work across threads between two balls.
 fn sweep_wall_rows(
@@ -900,6 +928,17 @@ impl Crowd {
         }
     }
 
+    fn add_wall(&mut self, c: &WallContact) {
+        let wall = other_side(BodyRef::Wall(c.surface));
+        self.balls[c.ball as usize].add(wall, c.normal());
+    }
+
+    /// Whether wall contact `c` is the only contact coupled to its ball.
+    fn lone_wall(&self, c: &WallContact) -> bool {
+        let wall = other_side(BodyRef::Wall(c.surface));
+        self.balls[c.ball as usize].lone(wall, c.normal())
+    }
+
     /// Whether pair `p` is the only contact coupled to its two balls.
     fn lone_pair(&self, p: &Pair) -> bool {
         self.balls[p.i as usize].lone(p.j, p.normal) && self.balls[p.j as usize].lone(p.i, p.normal)
@@ -956,8 +995,17 @@ pub(crate) fn solve_predict(
         contacts.bands.iter_mut().for_each(measure_kick);
     }
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
-    if contacts.others.iter().any(Contact::involves_tumbler) {
+    if !contacts.others.is_empty() {
         crowd.add_pairs(contacts, |_| true);
+    }
+    for c in contacts.walls.iter_mut() {
+        c.impulse = 0.0;
+        // Gravity's half step, which the wall does not share.
+        let i = c.ball as usize;
+        c.kick = bodies.balls.velocity[i].dot(c.normal()) - c.approach;
+        if touching(c.gap, c.approach, c.kick) {
+            crowd.add_wall(c);
+        }
     }
     for c in contacts.others.iter_mut() {
         bodies.prepare(c);
@@ -969,10 +1017,8 @@ pub(crate) fn solve_predict(
         }
     }
     for c in contacts.others.iter_mut() {
-        c.bounce = c.involves_tumbler()
-            && c.approach < -bounce_threshold
-            && c.gap + c.approach * dt <= 0.0
-            && crowd.lone(c);
+        c.bounce =
+            c.approach < -bounce_threshold && c.gap + c.approach * dt <= 0.0 && crowd.lone(c);
     }
     // Pairs never bounce here, so all start warm.
     contacts.start_rows(bodies.balls, |p| {
@@ -982,16 +1028,16 @@ pub(crate) fn solve_predict(
     if let Some((warm, ids)) = warm {
         warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Predict);
     }
+    let closing = |gap: f64| if gap > 0.0 { -gap / dt } else { 0.0 };
     let target = |c: &Contact| {
         if c.bounce {
             c.kick - c.restitution * c.approach
-        } else if c.gap > 0.0 {
-            -c.gap / dt
         } else {
-            0.0
+            closing(c.gap)
         }
     };
-    contacts.start_wall_rows(bodies.balls, |c| Some((target(c), c.friction)));
+    let friction = contacts.wall_friction;
+    contacts.start_wall_rows(bodies.balls, |c| Some((closing(c.gap), friction)));
     for _ in 0..iterations {
         contacts.sweep_wall_rows(bodies.balls);
         contacts.sweep_rows(bodies.balls);
@@ -1006,6 +1052,9 @@ pub(crate) fn solve_predict(
         },
     );
     for c in contacts.others.iter_mut() {
+        c.pushed = c.impulse;
+    }
+    for c in contacts.walls.iter_mut() {
         c.pushed = c.impulse;
     }
 }
@@ -1040,16 +1089,15 @@ fn warm_start_walls(
     ids: &[u32],
     stage: Stage,
 ) {
-    for c in contacts.others.iter_mut() {
+    for c in contacts.walls.iter_mut() {
         if !stage.warm_starts(c.pushed, c.bounce) {
             continue;
         }
-        if let (BodyRef::Ball(i), BodyRef::Wall(s)) = (c.a, c.b) {
-            let impulse = warm.wall(ids[i], s);
-            if impulse > 0.0 {
-                c.impulse = impulse;
-                balls.velocity[i] += c.normal * (impulse * balls.inv_mass[i]);
-            }
+        let i = c.ball as usize;
+        let impulse = warm.wall(ids[i], c.surface);
+        if impulse > 0.0 {
+            c.impulse = impulse;
+            balls.velocity[i] += c.normal() * (impulse * balls.inv_mass[i]);
         }
     }
 }
@@ -1072,10 +1120,8 @@ pub(crate) fn record_warm_start(
         let (owner, partner) = pair_owner(p.i as usize, p.j as usize, ids);
         slots[owner - first].record_partner(partner, of(p.pushed, p.impulse));
     });
-    for c in &contacts.others {
-        if let (BodyRef::Ball(i), BodyRef::Wall(s)) = (c.a, c.b) {
-            warm.record_wall(i, s, of(c.pushed, c.impulse));
-        }
+    for c in &contacts.walls {
+        warm.record_wall(c.ball as usize, c.surface, of(c.pushed, c.impulse));
     }
 }
 
@@ -1102,20 +1148,23 @@ pub(crate) fn solve_project(
     for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
         crowd.add(c);
     }
-    let moved_off_wall = |b: BodyRef| matches!(b, BodyRef::Ball(i) if hit_wall[i]);
-    for c in contacts.others.iter_mut() {
-        c.bounce = c.pushed > 0.0
-            && c.approach < -bounce_threshold
-            && !c.involves_tumbler()
-            && !moved_off_wall(c.a)
-            && !moved_off_wall(c.b)
-            && crowd.lone(c);
+    for c in contacts.walls.iter().filter(|c| c.pushed > 0.0) {
+        crowd.add_wall(c);
     }
+    // A tumbler's contacts bounced in the predict stage already.
     for c in contacts.others.iter_mut() {
+        c.bounce = false;
         c.impulse = 0.0;
         if c.pushed > 0.0 {
             bodies.prepare(c);
         }
+    }
+    for c in contacts.walls.iter_mut() {
+        c.bounce = c.pushed > 0.0
+            && c.approach < -bounce_threshold
+            && !hit_wall[c.ball as usize]
+            && crowd.lone_wall(c);
+        c.impulse = 0.0;
     }
     // Only the pairs that pushed take part.
     // A bouncing pair starts cold: its impulse is of this impact alone.
@@ -1136,22 +1185,23 @@ pub(crate) fn solve_project(
     if let Some((warm, ids)) = warm {
         warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Project);
     }
-    let target = |c: &Contact| {
-        if c.bounce {
-            -c.restitution * c.approach
-        } else {
-            0.0
-        }
-    };
     // Friction acted in the predict stage; here contacts only end bouncing
     // or at rest.
-    contacts.start_wall_rows(bodies.balls, |c| (c.pushed > 0.0).then(|| (target(c), 0.0)));
+    let restitution = contacts.wall_restitution;
+    contacts.start_wall_rows(bodies.balls, |c| {
+        let target = if c.bounce {
+            -restitution * c.approach
+        } else {
+            0.0
+        };
+        (c.pushed > 0.0).then_some((target, 0.0))
+    });
     for _ in 0..iterations {
         contacts.sweep_wall_rows(bodies.balls);
         contacts.sweep_rows(bodies.balls);
         contacts.sweep_tumblers(bodies, |c, bodies| {
             if c.pushed > 0.0 {
-                bodies.solve_normal(c, target(c));
+                bodies.solve_normal(c, 0.0);
             }
         });
     }

@@ -87,6 +87,11 @@ impl Room {
         }
     }
 
+    /// The point of a surface's plane nearest to `p`.
+    pub fn foot(&self, surface: Surface, p: DVec3) -> DVec3 {
+        p - surface.inward_normal() * self.distance(surface, p)
+    }
+
     /// Moves a sphere's centre so that the sphere lies inside the room.
     pub fn clamp_sphere(&self, p: DVec3, radius: f64) -> DVec3 {
         let lo = self.min + DVec3::splat(radius);

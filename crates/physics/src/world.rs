@@ -17,8 +17,8 @@ use crate::broadphase::Grid;
 use crate::ccd::first_impact;
 use crate::config::{Rgb, WorldConfig};
 use crate::contact::{
-    Bodies, BodyRef, Contact, Contacts, Crowd, PARALLEL_PAIRS, Pair, Stage, record_warm_start,
-    solve_predict, solve_project,
+    Bodies, BodyRef, Contact, Contacts, Crowd, PARALLEL_PAIRS, Pair, Stage, WallContact,
+    record_warm_start, solve_predict, solve_project,
 };
 use crate::events::{Event, EventKind};
 use crate::fireball::Fireball;
@@ -120,7 +120,7 @@ pub struct World {
     /// Per ball: where it was before sunk balls were pushed apart.
     unpushed: Vec<DVec3>,
     /// Per grid layer: the contacts of its balls with the walls.
-    wall_contacts_by_layer: Vec<Vec<Contact>>,
+    wall_contacts_by_layer: Vec<Vec<WallContact>>,
     crowd: Crowd,
     /// Last step's impulses of each solver stage, by ball number (see [`crate::warm`]),
     /// and this step's, which take their place once the step is done.
@@ -814,7 +814,7 @@ impl World {
             }
         });
         let partners = &self.ball_partners;
-        let touch_walls = |i: usize, into: &mut Vec<Contact>| {
+        let touch_walls = |i: usize, into: &mut Vec<WallContact>| {
             let crowded = partners[i] > 0;
             for s in Surface::ALL {
                 let gap = room.distance(s, balls.position[i]) - balls.radius[i];
@@ -826,16 +826,11 @@ impl World {
                     0.0
                 };
                 if gap <= reach + TOUCH_SLOP {
-                    let mut c = Contact::new(
-                        BodyRef::Ball(i),
-                        BodyRef::Wall(s),
-                        n,
-                        balls.position[i] - n * balls.radius[i],
-                        if gap > TOUCH_SLOP { gap } else { gap.min(0.0) },
-                        cfg.room.restitution,
-                    );
-                    c.friction = cfg.room.friction;
-                    into.push(c);
+                    let gap = if gap > TOUCH_SLOP { gap } else { gap.min(0.0) };
+                    // Its approach speed before anything moves: what
+                    // restitution acts on.
+                    let approach = balls.velocity[i].dot(n);
+                    into.push(WallContact::new(i, s, gap, approach));
                 }
             }
         };
@@ -844,7 +839,7 @@ impl World {
         let layers = &contacts.layers;
         let by_layer = &mut self.wall_contacts_by_layer;
         by_layer.resize_with(layers.len() - 1, Vec::new);
-        let fill = |(z, into): (usize, &mut Vec<Contact>)| {
+        let fill = |(z, into): (usize, &mut Vec<WallContact>)| {
             into.clear();
             (layers[z]..layers[z + 1]).for_each(|i| touch_walls(i, into));
         };
@@ -854,9 +849,10 @@ impl World {
             by_layer.iter_mut().enumerate().for_each(fill);
         }
         for layer in by_layer.iter() {
-            contacts.others.extend_from_slice(layer);
+            contacts.walls.extend_from_slice(layer);
         }
-        contacts.ball_walls = contacts.others.len();
+        contacts.wall_restitution = cfg.room.restitution;
+        contacts.wall_friction = cfg.room.friction;
 
         // Balls against tumblers: the grid narrows to balls near the bounding
         // sphere, then the six spheres give the contact (P7).
@@ -982,14 +978,11 @@ impl World {
     /// in proportion to the normal impulse, until it stops.
     fn apply_rolling_resistance(&mut self) {
         let coefficient = self.config.room.rolling_resistance;
-        for c in &self.contacts.others {
-            let (BodyRef::Ball(i), BodyRef::Wall(_)) = (c.a, c.b) else {
-                continue;
-            };
+        for c in &self.contacts.walls {
             if c.pushed <= 0.0 {
                 continue;
             }
-            let n = c.normal;
+            let (i, n) = (c.ball as usize, c.normal());
             let v = self.balls.velocity[i];
             let tangential = v - v.dot(n) * n;
             let speed = tangential.length();
@@ -1126,18 +1119,28 @@ impl World {
                 speed: -p.approach,
             });
         }
+        for c in &self.contacts.walls {
+            if c.pushed <= 0.0 || -c.approach <= threshold {
+                continue;
+            }
+            let (i, s) = (c.ball as usize, c.surface);
+            self.balls.tint[i] = Tint::Surface(s);
+            self.events.push(Event {
+                kind: EventKind::BallSurface {
+                    ball: i,
+                    surface: s,
+                },
+                // Where the ball meets the wall.
+                point: self.room.foot(s, self.balls.position[i]),
+                normal: c.normal(),
+                speed: -c.approach,
+            });
+        }
         for c in &self.contacts.others {
             if c.pushed <= 0.0 || -c.approach <= threshold {
                 continue;
             }
             let kind = match (c.a, c.b) {
-                (BodyRef::Ball(i), BodyRef::Wall(s)) => {
-                    self.balls.tint[i] = Tint::Surface(s);
-                    EventKind::BallSurface {
-                        ball: i,
-                        surface: s,
-                    }
-                }
                 (BodyRef::Ball(i), BodyRef::Tumbler(t, s)) => {
                     self.balls.tint[i] = Tint::Tumbler(t);
                     EventKind::BallTumbler {
