@@ -442,16 +442,13 @@ impl Contacts {
             let row = WallRow::new(c.ball as usize, c.surface, balls, target, friction);
             Some((row, WallImpulse::starting(c.impulse)))
         };
+        // On one thread: a parallel filter gathers its pieces in lists,
+        // which costs more than the rows.
         let WallRows { rows, impulses } = &mut self.wall_rows;
         let mut built = (std::mem::take(rows), std::mem::take(impulses));
         built.0.clear();
         built.1.clear();
-        // In contact order on any number of threads.
-        if walls.len() >= PARALLEL_BALL_WALLS {
-            built.par_extend(walls.par_iter().filter_map(build));
-        } else {
-            built.extend(walls.iter().filter_map(build));
-        }
+        built.extend(walls.iter().filter_map(build));
         (*rows, *impulses) = built;
     }
 
@@ -894,10 +891,20 @@ fn other_side(body: BodyRef) -> u32 {
 }
 
 impl Crowd {
+    /// From this many balls on, a reset runs on all threads.
+    const PARALLEL_RESET: usize = 16384;
+
     fn reset(&mut self, balls: usize, tumblers: usize) {
         // Entries past a ball's count are never read: only counts restart.
+        // Each count lies on a line of its own, so a crowded room's are
+        // restarted on all threads.
         self.balls.resize(balls, BallCrowd::default());
-        self.balls.iter_mut().for_each(|b| b.count = 0);
+        let restart = |b: &mut BallCrowd| b.count = 0;
+        if balls >= Crowd::PARALLEL_RESET {
+            self.balls.par_iter_mut().for_each(restart);
+        } else {
+            self.balls.iter_mut().for_each(restart);
+        }
         self.tumbler_count.clear();
         self.tumbler_count.resize(tumblers, 0);
     }
@@ -1145,6 +1152,7 @@ pub(crate) fn solve_project(
 ) {
     crowd.reset(bodies.balls.len(), bodies.tumblers.len());
     crowd.add_pairs(contacts, |p| p.pushed > 0.0);
+
     for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
         crowd.add(c);
     }
