@@ -102,31 +102,25 @@ pub(crate) struct Pair {
     /// Distance between the surfaces at the start of the step (negative: overlap).
     pub gap: f64,
     /// Relative normal velocity before the step (negative: approaching).
+    /// Gravity's half step moves both balls alike, so it stays the same.
     pub approach: f64,
-    /// How much gravity's half step changed the relative normal velocity.
-    pub kick: f64,
+    /// Accumulated normal impulse of the current stage.
     pub impulse: f64,
     /// Normal impulse of the predict stage (> 0: the pair pushed).
     pub pushed: f64,
 }
 
 impl Pair {
-    pub fn new(i: usize, j: usize, normal: DVec3, gap: f64) -> Pair {
+    pub fn new(i: usize, j: usize, normal: DVec3, gap: f64, approach: f64) -> Pair {
         Pair {
             i: i as u32,
             j: j as u32,
             normal,
             gap,
-            approach: 0.0,
-            kick: 0.0,
+            approach,
             impulse: 0.0,
             pushed: 0.0,
         }
-    }
-
-    /// Relative normal velocity (negative: approaching).
-    pub fn normal_velocity(&self, balls: &Balls) -> f64 {
-        (balls.velocity[self.i as usize] - balls.velocity[self.j as usize]).dot(self.normal)
     }
 }
 
@@ -989,18 +983,6 @@ pub(crate) fn solve_predict(
     crowd.reset(bodies.balls.len(), bodies.tumblers.len());
     let touching =
         |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
-    let balls = &*bodies.balls;
-    // How much gravity's half step changed each pair's normal velocity.
-    let measure_kick = |band: &mut Vec<Pair>| {
-        for p in band.iter_mut() {
-            p.kick = p.normal_velocity(balls) - p.approach;
-        }
-    };
-    if contacts.pair_count() >= PARALLEL_PAIRS {
-        contacts.bands.par_iter_mut().for_each(measure_kick);
-    } else {
-        contacts.bands.iter_mut().for_each(measure_kick);
-    }
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
     if !contacts.others.is_empty() {
         crowd.add_pairs(contacts, |_| true);

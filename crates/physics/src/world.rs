@@ -783,7 +783,8 @@ impl World {
                     // along a straight line: take the normal at the moment of impact.
                     let reach = balls.radius[i] + balls.radius[j];
                     let (n, gap) = impact_normal(d, relative, reach, dt).unwrap_or((d / dist, gap));
-                    band.push(Pair::new(i, j, n, gap));
+                    // Approach speed before anything moves: what restitution acts on.
+                    band.push(Pair::new(i, j, n, gap, relative.dot(n)));
                 }
             });
         };
@@ -954,21 +955,11 @@ impl World {
             }
         }
 
-        // Approach speeds before anything moves: what restitution acts on.
+        // Approach speeds before anything moves: what restitution acts on
+        // (pairs and walls have theirs from when they were found).
         let SolverParts {
             bodies, contacts, ..
         } = self.solver_parts(None);
-        let balls = &*bodies.balls;
-        let approach = |band: &mut Vec<Pair>| {
-            for p in band {
-                p.approach = p.normal_velocity(balls);
-            }
-        };
-        if balls.len() >= PARALLEL_BALLS {
-            contacts.bands.par_iter_mut().for_each(approach);
-        } else {
-            contacts.bands.iter_mut().for_each(approach);
-        }
         for c in contacts.others.iter_mut() {
             c.approach = bodies.normal_velocity(c);
         }
