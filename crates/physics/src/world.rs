@@ -69,6 +69,36 @@ impl Energy {
     }
 }
 
+impl std::ops::Add for Energy {
+    type Output = Energy;
+
+    fn add(self, other: Energy) -> Energy {
+        Energy {
+            kinetic: self.kinetic + other.kinetic,
+            potential: self.potential + other.potential,
+        }
+    }
+}
+
+/// Adds up `part(range)` over the balls `0..count` in runs of a fixed
+/// length, in order: the same sum on any number of threads, worked out on
+/// all of them for many balls.
+fn sum_in_runs<T, P>(count: usize, part: P) -> T
+where
+    T: Default + Send + std::ops::Add<Output = T>,
+    P: Fn(std::ops::Range<usize>) -> T + Sync,
+{
+    const RUN: usize = 4096;
+    let run = |r: usize| part(r * RUN..((r + 1) * RUN).min(count));
+    let runs = count.div_ceil(RUN);
+    if count >= PARALLEL_BALLS {
+        let parts: Vec<T> = (0..runs).into_par_iter().map(run).collect();
+        parts.into_iter().fold(T::default(), |a, b| a + b)
+    } else {
+        (0..runs).map(run).fold(T::default(), |a, b| a + b)
+    }
+}
+
 /// The world's parts that the contact solver reads and writes.
 struct SolverParts<'a> {
     bodies: Bodies<'a>,
@@ -367,31 +397,17 @@ impl World {
     pub fn energy(&self) -> Energy {
         let g = self.config.gravity;
         let floor = self.room.min.y;
-        // In runs of a fixed length, added in order: the same sum on any
-        // number of threads.
-        const RUN: usize = 4096;
         let balls = &self.balls;
-        let run = |r: usize| {
+        let mut e = sum_in_runs(balls.len(), |run| {
             let mut e = Energy::default();
-            for i in r * RUN..((r + 1) * RUN).min(balls.len()) {
+            for i in run {
                 if balls.alive[i] {
                     e.kinetic += balls.kinetic_energy(i);
                     e.potential += balls.mass[i] * g * (balls.position[i].y - floor);
                 }
             }
             e
-        };
-        let runs = balls.len().div_ceil(RUN);
-        let add = |a: Energy, b: Energy| Energy {
-            kinetic: a.kinetic + b.kinetic,
-            potential: a.potential + b.potential,
-        };
-        let mut e = if balls.len() >= PARALLEL_BALLS {
-            let parts: Vec<Energy> = (0..runs).into_par_iter().map(run).collect();
-            parts.into_iter().fold(Energy::default(), add)
-        } else {
-            (0..runs).map(run).fold(Energy::default(), add)
-        };
+        });
         for t in &self.tumblers {
             e.kinetic += t.kinetic_energy(&self.shape);
             e.potential += self.shape.mass * g * (t.center_of_mass().y - floor);
@@ -1186,20 +1202,32 @@ impl World {
                 break;
             }
             pushed = true;
-            for (p, &r) in balls.position.iter_mut().zip(radius) {
-                *p = self.room.clamp_sphere(*p, r);
+            let room = &self.room;
+            let inside = |(p, &r): (&mut DVec3, &f64)| *p = room.clamp_sphere(*p, r);
+            if balls.len() >= PARALLEL_BALLS {
+                balls.position.par_iter_mut().zip(radius).for_each(inside);
+            } else {
+                balls.position.iter_mut().zip(radius).for_each(inside);
             }
         }
         if !pushed {
             return;
         }
         let g = self.config.gravity;
-        let lift = |i: usize| balls.mass[i] * g * (balls.position[i].y - self.unpushed[i].y);
-        let cost: f64 = (0..balls.len()).map(lift).sum();
+        let unpushed = &self.unpushed;
+        let lift = |i: usize| balls.mass[i] * g * (balls.position[i].y - unpushed[i].y);
+        let cost: f64 = sum_in_runs(balls.len(), |run| run.map(lift).sum());
         if cost > budget {
             let share = (budget / cost).max(0.0);
-            for (p, &from) in balls.position.iter_mut().zip(&self.unpushed) {
-                *p = from + (*p - from) * share;
+            let shorten = |(p, &from): (&mut DVec3, &DVec3)| *p = from + (*p - from) * share;
+            if balls.len() >= PARALLEL_BALLS {
+                balls
+                    .position
+                    .par_iter_mut()
+                    .zip(unpushed)
+                    .for_each(shorten);
+            } else {
+                balls.position.iter_mut().zip(unpushed).for_each(shorten);
             }
         }
     }
