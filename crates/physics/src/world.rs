@@ -1188,13 +1188,22 @@ impl World {
             let push = |p: &mut Pair, position: &mut [DVec3], first: usize| {
                 let (i, j) = (p.i as usize, p.j as usize);
                 let d = position[i - first] - position[j - first];
+                let reach = (radius[i] + radius[j]) * (1.0 - SUNK_SLOP);
+                // Most pairs are not sunk: tell them without a square root.
+                if d.length_squared() >= reach * reach {
+                    return;
+                }
                 let dist = d.length();
-                let overlap = (radius[i] + radius[j]) * (1.0 - SUNK_SLOP) - dist;
+                let overlap = reach - dist;
                 if overlap > 0.0 && dist > 0.0 {
                     let push = d * (PUSH_SHARE * overlap / (dist * (inv_mass[i] + inv_mass[j])));
                     position[i - first] += push * inv_mass[i];
                     position[j - first] -= push * inv_mass[j];
-                    pushed_now.store(true, Ordering::Relaxed);
+                    // Written once: threads writing one flag over and over
+                    // would take its memory from each other.
+                    if !pushed_now.load(Ordering::Relaxed) {
+                        pushed_now.store(true, Ordering::Relaxed);
+                    }
                 }
             };
             self.contacts.sweep_slots(&mut balls.position, &push);
