@@ -138,8 +138,6 @@ pub(crate) struct WallContact {
     pub gap: f64,
     /// The ball's normal velocity before the step (negative: approaching).
     pub approach: f64,
-    /// How much gravity's half step changed the normal velocity.
-    pub kick: f64,
     /// Accumulated normal impulse of the current stage.
     pub impulse: f64,
     /// Normal impulse of the predict stage (> 0: the contact pushed).
@@ -154,7 +152,6 @@ impl WallContact {
             bounce: false,
             gap,
             approach,
-            kick: 0.0,
             impulse: 0.0,
             pushed: 0.0,
         }
@@ -980,20 +977,22 @@ pub(crate) fn solve_predict(
     // ball sent back by a tumbler may meet a neighbour it was leaving, and
     // pressing it would make the bounce pump energy. Other contacts count
     // once they touch within the step.
-    crowd.reset(bodies.balls.len(), bodies.tumblers.len());
     let touching =
         |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
-    if !contacts.others.is_empty() {
+    let may_bounce = !contacts.others.is_empty();
+    if may_bounce {
+        crowd.reset(bodies.balls.len(), bodies.tumblers.len());
         crowd.add_pairs(contacts, |_| true);
     }
     for c in contacts.walls.iter_mut() {
         c.impulse = 0.0;
-        // Gravity's half step, which the wall does not share.
-        let i = c.ball as usize;
-        c.kick = bodies.balls.velocity[i].dot(c.normal()) - c.approach;
-        if touching(c.gap, c.approach, c.kick) {
-            crowd.add_wall(c);
+        if may_bounce {
+            // Gravity's half step, which the wall does not share.
+            let kick = bodies.balls.velocity[c.ball as usize].dot(c.normal()) - c.approach;
+            if touching(c.gap, c.approach, kick) {
+                crowd.add_wall(c);
+            }
         }
     }
     for c in contacts.others.iter_mut() {
