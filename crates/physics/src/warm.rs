@@ -139,7 +139,7 @@ impl WarmStart {
 }
 
 /// Below this many slots a warm start is begun on one thread.
-const PARALLEL_SLOTS: usize = 16384;
+const PARALLEL_SLOTS: usize = 4096;
 
 #[cfg(test)]
 mod tests {
