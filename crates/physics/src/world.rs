@@ -491,7 +491,7 @@ impl World {
     /// Advances the world by one fixed time step.
     ///
     /// The contact solver starts from last step's impulses (see
-    /// [`crate::warm`]). Should that make energy (only the hand may feed
+    /// the `warm` module). Should that make energy (only the hand may feed
     /// some in), the excess is taken from the balls' motion, all slowed
     /// alike; if they have too little, the balls' motion of the step is
     /// shortened (see `shorten_ball_motion`); if even that cannot pay, the
