@@ -80,6 +80,21 @@ impl std::ops::Add for Energy {
     }
 }
 
+/// Calls `f(item, with)` for each ball's `items[i]` and `with[i]`, on all
+/// threads for many balls: each ball's own, so the result is the same.
+fn per_ball<A, B, F>(items: &mut [A], with: &[B], f: F)
+where
+    A: Send,
+    B: Sync,
+    F: Fn(&mut A, &B) + Sync,
+{
+    if items.len() >= PARALLEL_BALLS {
+        items.par_iter_mut().zip(with).for_each(|(a, b)| f(a, b));
+    } else {
+        items.iter_mut().zip(with).for_each(|(a, b)| f(a, b));
+    }
+}
+
 /// Adds up `part(range)` over the balls `0..count` in runs of a fixed
 /// length, in order: the same sum on any number of threads, worked out on
 /// all of them for many balls.
@@ -1212,12 +1227,9 @@ impl World {
             }
             pushed = true;
             let room = &self.room;
-            let inside = |(p, &r): (&mut DVec3, &f64)| *p = room.clamp_sphere(*p, r);
-            if balls.len() >= PARALLEL_BALLS {
-                balls.position.par_iter_mut().zip(radius).for_each(inside);
-            } else {
-                balls.position.iter_mut().zip(radius).for_each(inside);
-            }
+            per_ball(&mut balls.position, radius, |p, &r| {
+                *p = room.clamp_sphere(*p, r)
+            });
         }
         if !pushed {
             return;
@@ -1228,16 +1240,9 @@ impl World {
         let cost: f64 = sum_in_runs(balls.len(), |run| run.map(lift).sum());
         if cost > budget {
             let share = (budget / cost).max(0.0);
-            let shorten = |(p, &from): (&mut DVec3, &DVec3)| *p = from + (*p - from) * share;
-            if balls.len() >= PARALLEL_BALLS {
-                balls
-                    .position
-                    .par_iter_mut()
-                    .zip(unpushed)
-                    .for_each(shorten);
-            } else {
-                balls.position.iter_mut().zip(unpushed).for_each(shorten);
-            }
+            per_ball(&mut balls.position, unpushed, |p, &from| {
+                *p = from + (*p - from) * share
+            });
         }
     }
 
