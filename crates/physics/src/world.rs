@@ -634,11 +634,11 @@ impl World {
         self.collect_contacts(dt);
 
         // Step-average velocities: half a step of gravity now, half after moving.
-        for i in 0..self.balls.len() {
-            if self.balls.alive[i] {
-                self.balls.velocity[i] += 0.5 * dt * g;
+        per_ball(&mut self.balls.velocity, &self.balls.alive, |v, &alive| {
+            if alive {
+                *v += 0.5 * dt * g;
             }
-        }
+        });
         self.update_contact_inertia();
         let (iterations, threshold) = (
             self.config.solver.iterations,
@@ -1322,11 +1322,10 @@ impl World {
                 t.center += shift;
             }
         }
-        for i in 0..self.balls.len() {
-            self.balls.position[i] = self
-                .room
-                .clamp_sphere(self.balls.position[i], self.balls.radius[i]);
-        }
+        let room = &self.room;
+        per_ball(&mut self.balls.position, &self.balls.radius, |p, &r| {
+            *p = room.clamp_sphere(*p, r)
+        });
     }
 
     /// Pushes two overlapping balls apart along their line of centres.
