@@ -367,9 +367,6 @@ pub(crate) struct Contacts {
     pair_count: usize,
     /// Balls against walls, in slot order.
     pub walls: Vec<WallContact>,
-    /// What every wall contact is made of: the room's restitution and friction.
-    pub wall_restitution: f64,
-    pub wall_friction: f64,
     /// Every other contact: each involves a tumbler.
     pub others: Vec<Contact>,
     /// Per band, the pairs a solver stage iterates on (see [`PairRow`]).
@@ -582,7 +579,11 @@ pub(crate) struct Bodies<'a> {
     pub shape: &'a TumblerShape,
     /// Per tumbler: inverse inertia about its floor contact (world axes).
     pub contact_inv: &'a [DMat3],
+    /// Between a tumbler's round bottom and the floor.
     pub floor_friction: f64,
+    /// What every ball-wall contact is made of: the room's walls.
+    pub wall_restitution: f64,
+    pub wall_friction: f64,
 }
 
 impl Bodies<'_> {
@@ -1024,7 +1025,7 @@ pub(crate) fn solve_predict(
             closing(c.gap)
         }
     };
-    let friction = contacts.wall_friction;
+    let friction = bodies.wall_friction;
     contacts.start_wall_rows(bodies.balls, |c| Some((closing(c.gap), friction)));
     for _ in 0..iterations {
         contacts.sweep_wall_rows(bodies.balls);
@@ -1176,7 +1177,7 @@ pub(crate) fn solve_project(
     }
     // Friction acted in the predict stage; here contacts only end bouncing
     // or at rest.
-    let restitution = contacts.wall_restitution;
+    let restitution = bodies.wall_restitution;
     contacts.start_wall_rows(bodies.balls, |c| {
         let target = if c.bounce {
             -restitution * c.approach

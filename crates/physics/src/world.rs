@@ -756,6 +756,8 @@ impl World {
             shape: &self.shape,
             contact_inv: &self.contact_inv,
             floor_friction: self.config.tumblers.floor_friction,
+            wall_restitution: self.config.room.restitution,
+            wall_friction: self.config.room.friction,
         };
         SolverParts {
             bodies,
@@ -883,8 +885,6 @@ impl World {
         for layer in by_layer.iter() {
             contacts.walls.extend_from_slice(layer);
         }
-        contacts.wall_restitution = cfg.room.restitution;
-        contacts.wall_friction = cfg.room.friction;
 
         // Balls against tumblers: the grid narrows to balls near the bounding
         // sphere, then the six spheres give the contact (P7).
