@@ -432,7 +432,12 @@ impl Contacts {
         };
         // On one thread: a parallel filter gathers its pieces in lists,
         // which costs more than the rows.
-        let WallRows { rows, impulses } = &mut self.wall_rows;
+        let WallRows {
+            rows,
+            impulses,
+            frames,
+        } = &mut self.wall_rows;
+        *frames = Surface::ALL.map(WallFrame::of);
         let mut built = (std::mem::take(rows), std::mem::take(impulses));
         built.0.clear();
         built.1.clear();
@@ -448,14 +453,17 @@ impl Contacts {
     fn sweep_wall_rows(&mut self, balls: &mut Balls) {
         let parallel =
             self.wall_rows.rows.len() >= PARALLEL_BALL_WALLS && self.pair_count() >= PARALLEL_PAIRS;
-        let frames = Surface::ALL.map(WallFrame::of);
-        let WallRows { rows, impulses } = &mut self.wall_rows;
+        let WallRows {
+            rows,
+            impulses,
+            frames,
+        } = &mut self.wall_rows;
         let view = BallSlices {
             velocity: &mut balls.velocity,
             spin: &mut balls.spin,
             first: 0,
         };
-        sweep_wall_rows(rows, impulses, view, &frames, parallel);
+        sweep_wall_rows(rows, impulses, view, frames, parallel);
     }
 
     /// Hands each ball-wall contact its row's normal impulse, 0 for the
@@ -693,11 +701,13 @@ impl WallImpulse {
 struct WallRows {
     rows: Vec<WallRow>,
     impulses: Vec<WallImpulse>,
+    /// Each surface's frame, by surface index: worked out once a stage.
+    frames: [WallFrame; 6],
 }
 
 /// A surface's inward normal, the two tangents friction acts along, and
 /// the axes about which friction along each turns a ball (normal x tangent).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 struct WallFrame {
     normal: DVec3,
     tangents: [DVec3; 2],
