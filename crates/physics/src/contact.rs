@@ -23,6 +23,7 @@ use crate::tumbler::{Response, Tumbler, TumblerShape};
 use crate::warm::{WarmStart, pair_owner};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Surfaces closer than this (metres) at the end of a step count as touching.
 const TOUCHING: f64 = 1e-6;
@@ -843,10 +844,17 @@ fn sweep_wall_rows(
 /// stopping them cannot. Two contacts on one ball are coupled unless their
 /// normals are perpendicular, so a ball rolling on the floor still bounces
 /// off another one sideways. On a tumbler every pair of contacts is coupled.
-#[derive(Clone, Debug, Default)]
+///
+/// The project stage asks only about balls in a fast impact, which are few
+/// in a pile: it gathers the contacts of those balls alone (see
+/// [`Crowd::will_ask`]).
+#[derive(Debug, Default)]
 pub(crate) struct Crowd {
     balls: Vec<BallCrowd>,
     tumbler_count: Vec<u8>,
+    /// Per ball: whether the project stage may ask about it. Set on any
+    /// thread, and read only after the threads have joined.
+    asked: Vec<AtomicBool>,
 }
 
 /// The contacts on one ball: how many, and the first few, each by the body
@@ -896,6 +904,59 @@ impl Crowd {
     /// From this many balls on, a reset runs on all threads.
     const PARALLEL_RESET: usize = 16384;
 
+    /// Forgets which balls the project stage will ask about.
+    fn forget_asked(&mut self, balls: usize) {
+        self.asked.resize_with(balls, AtomicBool::default);
+        self.asked.iter_mut().for_each(|a| *a.get_mut() = false);
+    }
+
+    /// Notes that the project stage may ask about ball `i`.
+    fn will_ask(&self, i: u32) {
+        self.asked[i as usize].store(true, Ordering::Relaxed);
+    }
+
+    fn asked(&self, i: usize) -> bool {
+        self.asked[i].load(Ordering::Relaxed)
+    }
+
+    /// Gathers, for the balls noted by [`Crowd::will_ask`] alone, their
+    /// pairs that `counts` picks; and readies the other contacts to be
+    /// added. Balls no one will ask about keep a stale crowd.
+    fn gather_asked<F>(&mut self, contacts: &mut Contacts, tumblers: usize, counts: F)
+    where
+        F: Fn(&Pair) -> bool + Sync,
+    {
+        let restart = |b: &mut BallCrowd, asked: &AtomicBool| {
+            if asked.load(Ordering::Relaxed) {
+                b.count = 0;
+            }
+        };
+        self.balls.resize(self.asked.len(), BallCrowd::default());
+        if self.balls.len() >= Crowd::PARALLEL_RESET {
+            let pieces = self.balls.par_iter_mut().zip(&self.asked);
+            pieces.for_each(|(b, a)| restart(b, a));
+        } else {
+            let pieces = self.balls.iter_mut().zip(&self.asked);
+            pieces.for_each(|(b, a)| restart(b, a));
+        }
+        self.tumbler_count.clear();
+        self.tumbler_count.resize(tumblers, 0);
+        if !self.asked.iter().any(|a| a.load(Ordering::Relaxed)) {
+            return;
+        }
+        let asked = &self.asked;
+        contacts.sweep_slots(&mut self.balls, &|p, balls, first| {
+            if counts(p) {
+                if asked[p.i as usize].load(Ordering::Relaxed) {
+                    balls[p.i as usize - first].add(p.j, p.normal);
+                }
+                if asked[p.j as usize].load(Ordering::Relaxed) {
+                    balls[p.j as usize - first].add(p.i, p.normal);
+                }
+            }
+        });
+    }
+
     fn reset(&mut self, balls: usize, tumblers: usize) {
         // Entries past a ball's count are never read: only counts restart.
         // Each count lies on a line of its own, so a crowded room's are
@@ -926,8 +987,18 @@ impl Crowd {
     }
 
     fn add(&mut self, c: &Contact) {
+        self.add_to(c, false);
+    }
+
+    /// As [`Crowd::add`], for the balls noted by [`Crowd::will_ask`].
+    fn add_if_asked(&mut self, c: &Contact) {
+        self.add_to(c, true);
+    }
+
+    fn add_to(&mut self, c: &Contact, asked_only: bool) {
         for (body, other) in [(c.a, c.b), (c.b, c.a)] {
             match body {
+                BodyRef::Ball(i) if asked_only && !self.asked(i) => {}
                 BodyRef::Ball(i) => self.balls[i].add(other_side(other), c.normal),
                 BodyRef::Tumbler(t, _) => {
                     self.tumbler_count[t] = self.tumbler_count[t].saturating_add(1)
@@ -944,12 +1015,14 @@ impl Crowd {
 
     /// Whether wall contact `c` is the only contact coupled to its ball.
     fn lone_wall(&self, c: &WallContact) -> bool {
+        debug_assert!(self.asked(c.ball as usize));
         let wall = other_side(BodyRef::Wall(c.surface));
         self.balls[c.ball as usize].lone(wall, c.normal())
     }
 
     /// Whether pair `p` is the only contact coupled to its two balls.
     fn lone_pair(&self, p: &Pair) -> bool {
+        debug_assert!(self.asked(p.i as usize) && self.asked(p.j as usize));
         self.balls[p.i as usize].lone(p.j, p.normal) && self.balls[p.j as usize].lone(p.i, p.normal)
     }
 
@@ -992,6 +1065,7 @@ pub(crate) fn solve_predict(
         |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
     let may_bounce = !contacts.others.is_empty();
+    crowd.forget_asked(bodies.balls.len());
     if may_bounce {
         crowd.reset(bodies.balls.len(), bodies.tumblers.len());
         crowd.add_pairs(contacts, |_| true);
@@ -1043,11 +1117,19 @@ pub(crate) fn solve_predict(
         contacts.sweep_tumblers(bodies, |c, bodies| bodies.solve_normal(c, target(c)));
     }
     contacts.keep_wall_impulses(|_| true);
+    // The project stage asks about the balls of contacts that pushed
+    // against a fast approach: only those may bounce.
+    let fast = |pushed: f64, approach: f64| pushed > 0.0 && approach < -bounce_threshold;
+    let crowd = &*crowd;
     contacts.keep_row_impulses(
         |_| true,
         |p, impulse| {
             p.impulse = impulse;
             p.pushed = impulse;
+            if fast(p.pushed, p.approach) {
+                crowd.will_ask(p.i);
+                crowd.will_ask(p.j);
+            }
         },
     );
     for c in contacts.others.iter_mut() {
@@ -1055,6 +1137,9 @@ pub(crate) fn solve_predict(
     }
     for c in contacts.walls.iter_mut() {
         c.pushed = c.impulse;
+        if fast(c.pushed, c.approach) {
+            crowd.will_ask(c.ball);
+        }
     }
 }
 
@@ -1142,14 +1227,14 @@ pub(crate) fn solve_project(
     hit_wall: &[bool],
     warm: Option<(&WarmStart, &[u32])>,
 ) {
-    crowd.reset(bodies.balls.len(), bodies.tumblers.len());
-    crowd.add_pairs(contacts, |p| p.pushed > 0.0);
-
+    crowd.gather_asked(contacts, bodies.tumblers.len(), |p| p.pushed > 0.0);
     for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
-        crowd.add(c);
+        crowd.add_if_asked(c);
     }
     for c in contacts.walls.iter().filter(|c| c.pushed > 0.0) {
-        crowd.add_wall(c);
+        if crowd.asked(c.ball as usize) {
+            crowd.add_wall(c);
+        }
     }
     // A tumbler's contacts bounced in the predict stage already.
     for c in contacts.others.iter_mut() {
