@@ -919,9 +919,9 @@ impl Crowd {
         self.asked[i].load(Ordering::Relaxed)
     }
 
-    /// Gathers, for the balls noted by [`Crowd::will_ask`] alone, their
-    /// pairs that `counts` picks; and readies the other contacts to be
-    /// added. Balls no one will ask about keep a stale crowd.
+    /// Restarts the crowds of the balls noted by [`Crowd::will_ask`] and
+    /// gathers their pairs that `counts` picks; restarts the tumblers'
+    /// counts too. Balls no one will ask about keep a stale crowd.
     fn gather_asked<F>(&mut self, contacts: &mut Contacts, tumblers: usize, counts: F)
     where
         F: Fn(&Pair) -> bool + Sync,
