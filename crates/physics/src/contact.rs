@@ -919,69 +919,44 @@ impl Crowd {
         self.asked[i].load(Ordering::Relaxed)
     }
 
-    /// Restarts the crowds of the balls noted by [`Crowd::will_ask`] and
-    /// gathers their pairs that `counts` picks; restarts the tumblers'
-    /// counts too. Balls no one will ask about keep a stale crowd.
-    fn gather_asked<F>(&mut self, contacts: &mut Contacts, tumblers: usize, counts: F)
+    /// Restarts the crowds of every ball, or with `only_asked` of the balls
+    /// noted by [`Crowd::will_ask`], and gathers their pairs that `counts`
+    /// picks, on all threads: a ball's list is a set, so the order in which
+    /// pairs join it does not matter. Restarts the tumblers' counts too.
+    /// Balls left out keep a stale crowd.
+    fn gather<F>(&mut self, contacts: &mut Contacts, tumblers: usize, only_asked: bool, counts: F)
     where
         F: Fn(&Pair) -> bool + Sync,
     {
-        let restart = |b: &mut BallCrowd, asked: &AtomicBool| {
-            if asked.load(Ordering::Relaxed) {
-                b.count = 0;
-            }
-        };
-        self.balls.resize(self.asked.len(), BallCrowd::default());
-        if self.balls.len() >= Crowd::PARALLEL_RESET {
-            let pieces = self.balls.par_iter_mut().zip(&self.asked);
-            pieces.for_each(|(b, a)| restart(b, a));
-        } else {
-            let pieces = self.balls.iter_mut().zip(&self.asked);
-            pieces.for_each(|(b, a)| restart(b, a));
-        }
-        self.tumbler_count.clear();
-        self.tumbler_count.resize(tumblers, 0);
-        if !self.asked.iter().any(|a| a.load(Ordering::Relaxed)) {
-            return;
-        }
         let asked = &self.asked;
-        contacts.sweep_slots(&mut self.balls, &|p, balls, first| {
-            if counts(p) {
-                if asked[p.i as usize].load(Ordering::Relaxed) {
-                    balls[p.i as usize - first].add(p.j, p.normal);
-                }
-                if asked[p.j as usize].load(Ordering::Relaxed) {
-                    balls[p.j as usize - first].add(p.i, p.normal);
-                }
-            }
-        });
-    }
-
-    fn reset(&mut self, balls: usize, tumblers: usize) {
+        let wanted = |i: usize| !only_asked || asked[i].load(Ordering::Relaxed);
         // Entries past a ball's count are never read: only counts restart.
         // Each count lies on a line of its own, so a crowded room's are
         // restarted on all threads.
-        self.balls.resize(balls, BallCrowd::default());
-        let restart = |b: &mut BallCrowd| b.count = 0;
-        if balls >= Crowd::PARALLEL_RESET {
-            self.balls.par_iter_mut().for_each(restart);
+        let restart = |(i, b): (usize, &mut BallCrowd)| {
+            if wanted(i) {
+                b.count = 0;
+            }
+        };
+        self.balls.resize(asked.len(), BallCrowd::default());
+        if self.balls.len() >= Crowd::PARALLEL_RESET {
+            self.balls.par_iter_mut().enumerate().for_each(restart);
         } else {
-            self.balls.iter_mut().for_each(restart);
+            self.balls.iter_mut().enumerate().for_each(restart);
         }
         self.tumbler_count.clear();
         self.tumbler_count.resize(tumblers, 0);
-    }
-
-    /// Adds the pairs that `counts` picks, on all threads: a ball's list is
-    /// a set, so the order in which pairs join it does not matter.
-    fn add_pairs<F>(&mut self, contacts: &mut Contacts, counts: F)
-    where
-        F: Fn(&Pair) -> bool + Sync,
-    {
+        if only_asked && !asked.iter().any(|a| a.load(Ordering::Relaxed)) {
+            return;
+        }
         contacts.sweep_slots(&mut self.balls, &|p, balls, first| {
             if counts(p) {
-                balls[p.i as usize - first].add(p.j, p.normal);
-                balls[p.j as usize - first].add(p.i, p.normal);
+                if wanted(p.i as usize) {
+                    balls[p.i as usize - first].add(p.j, p.normal);
+                }
+                if wanted(p.j as usize) {
+                    balls[p.j as usize - first].add(p.i, p.normal);
+                }
             }
         });
     }
@@ -1067,8 +1042,7 @@ pub(crate) fn solve_predict(
     let may_bounce = !contacts.others.is_empty();
     crowd.forget_asked(bodies.balls.len());
     if may_bounce {
-        crowd.reset(bodies.balls.len(), bodies.tumblers.len());
-        crowd.add_pairs(contacts, |_| true);
+        crowd.gather(contacts, bodies.tumblers.len(), false, |_| true);
     }
     for c in contacts.walls.iter_mut() {
         c.impulse = 0.0;
@@ -1227,7 +1201,7 @@ pub(crate) fn solve_project(
     hit_wall: &[bool],
     warm: Option<(&WarmStart, &[u32])>,
 ) {
-    crowd.gather_asked(contacts, bodies.tumblers.len(), |p| p.pushed > 0.0);
+    crowd.gather(contacts, bodies.tumblers.len(), true, |p| p.pushed > 0.0);
     for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
         crowd.add_if_asked(c);
     }
