@@ -20,7 +20,7 @@
 use crate::balls::{Balls, sphere_inertia};
 use crate::room::Surface;
 use crate::tumbler::{Response, Tumbler, TumblerShape};
-use crate::warm::{WarmStart, pair_owner};
+use crate::warm::{WarmPart, WarmStart};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -555,15 +555,19 @@ impl Contacts {
     }
 
     /// Hands each pair its row's impulse, `keep(pair, impulse)`, 0 for the
-    /// pairs without a row; `chosen` tells them as in
+    /// pairs without a row, and records the impulse each pair then holds
+    /// for the next step's warm start in `record` (begun for this step's
+    /// slots, with each slot's ball number); `chosen` tells them as in
     /// [`Contacts::start_rows`].
-    fn keep_row_impulses<F, G>(&mut self, chosen: F, keep: G)
+    fn keep_row_impulses<F, G>(&mut self, chosen: F, keep: G, record: (&mut WarmStart, &[u32]))
     where
         F: Fn(&Pair) -> bool + Sync,
         G: Fn(&mut Pair, f64) + Sync,
     {
-        let hand = |(band, rows): (&mut Vec<Pair>, &RowBand)| {
-            let mut impulses = rows.impulses.iter();
+        let (warm, ids) = record;
+        let rows = &self.rows;
+        let hand = |z: usize, band: &mut Vec<Pair>, part: &mut WarmPart| {
+            let mut impulses = rows[z].impulses.iter();
             for p in band.iter_mut() {
                 let impulse = if chosen(p) {
                     impulses.next().copied().unwrap_or(0.0)
@@ -572,12 +576,51 @@ impl Contacts {
                 };
                 keep(p, impulse);
             }
+            part.record_pairs(band, ids);
         };
-        if self.pair_count() >= PARALLEL_PAIRS {
-            self.bands.par_iter_mut().zip(&self.rows).for_each(hand);
-        } else {
-            self.bands.iter_mut().zip(&self.rows).for_each(hand);
-        }
+        let parallel = self.pair_count() >= PARALLEL_PAIRS;
+        let part = warm.recorder();
+        by_band_with_own_part(&mut self.bands, 0, &self.layers, part, parallel, &hand);
+    }
+}
+
+/// Calls `f(z, band, part)` for the bands `bands`, numbered from
+/// `first_band` on, side by side: `part` is the part of a warm start's
+/// recording that band `z` writes (see [`WarmPart`]). A band's pairs are
+/// kept by slots of its own grid layer (see [`crate::warm::pair_owner`]), so no two
+/// bands write one place.
+fn by_band_with_own_part<F>(
+    bands: &mut [Vec<Pair>],
+    first_band: usize,
+    layers: &[usize],
+    part: WarmPart,
+    parallel: bool,
+    f: &F,
+) where
+    F: Fn(usize, &mut Vec<Pair>, &mut WarmPart) + Sync,
+{
+    if bands.len() >= 2 && parallel {
+        let half = bands.len() / 2;
+        let pairs: usize = bands[..half].iter().map(Vec::len).sum();
+        let (left, right) = bands.split_at_mut(half);
+        let pair_half = part.first_pair() + pairs;
+        let (left_part, right_part) = part.split(layers[half], pair_half);
+        rayon::join(
+            || by_band_with_own_part(left, first_band, layers, left_part, parallel, f),
+            || {
+                let right_layers = &layers[half..];
+                let right_first = first_band + half;
+                by_band_with_own_part(right, right_first, right_layers, right_part, parallel, f)
+            },
+        );
+        return;
+    }
+    let mut rest = part;
+    for (k, band) in bands.iter_mut().enumerate() {
+        let pair_end = rest.first_pair() + band.len();
+        let (mut own, later) = rest.split(layers[k + 1], pair_end);
+        f(first_band + k, band, &mut own);
+        rest = later;
     }
 }
 
@@ -1021,7 +1064,9 @@ impl Crowd {
 /// energy.
 ///
 /// With `warm` (last step's impulses and each slot's ball number) pairs and
-/// ball-wall contacts start from the impulse that held them last step.
+/// ball-wall contacts start from the impulse that held them last step; the
+/// impulses they end with are kept in `record` (see
+/// [`Contacts::keep_row_impulses`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_predict(
     bodies: &mut Bodies,
@@ -1031,6 +1076,7 @@ pub(crate) fn solve_predict(
     dt: f64,
     bounce_threshold: f64,
     warm: Option<(&WarmStart, &[u32])>,
+    record: (&mut WarmStart, &[u32]),
 ) {
     // Every ball within reach counts against a bounce, touching or not: a
     // ball sent back by a tumbler may meet a neighbour it was leaving, and
@@ -1095,6 +1141,7 @@ pub(crate) fn solve_predict(
     // against a fast approach: only those may bounce.
     let fast = |pushed: f64, approach: f64| pushed > 0.0 && approach < -bounce_threshold;
     let crowd = &*crowd;
+    let (warm_next, ids) = record;
     contacts.keep_row_impulses(
         |_| true,
         |p, impulse| {
@@ -1105,6 +1152,7 @@ pub(crate) fn solve_predict(
                 crowd.will_ask(p.j);
             }
         },
+        (&mut *warm_next, ids),
     );
     for c in contacts.others.iter_mut() {
         c.pushed = c.impulse;
@@ -1114,6 +1162,7 @@ pub(crate) fn solve_predict(
         if fast(c.pushed, c.approach) {
             crowd.will_ask(c.ball);
         }
+        warm_next.record_wall(c.ball as usize, c.surface, c.pushed);
     }
 }
 
@@ -1160,29 +1209,6 @@ fn warm_start_walls(
     }
 }
 
-/// Keeps the impulses of `stage` for the next step's warm start, into a
-/// `warm` begun for this step's slots.
-pub(crate) fn record_warm_start(
-    contacts: &mut Contacts,
-    warm: &mut WarmStart,
-    ids: &[u32],
-    stage: Stage,
-) {
-    let of = |pushed: f64, impulse: f64| match stage {
-        Stage::Predict => pushed,
-        Stage::Project => impulse,
-    };
-    // A pair is kept by one of its own balls' slots, so the pairs are
-    // recorded on all threads as they are solved.
-    contacts.sweep_slots(warm.slots_mut(), &|p, slots, first| {
-        let (owner, partner) = pair_owner(p.i as usize, p.j as usize, ids);
-        slots[owner - first].record_partner(partner, of(p.pushed, p.impulse));
-    });
-    for c in &contacts.walls {
-        warm.record_wall(c.ball as usize, c.surface, of(c.pushed, c.impulse));
-    }
-}
-
 /// Stage 2: contacts that pushed end bouncing or resting.
 ///
 /// A lone impact between balls, or of a ball on a wall, bounces to the speed
@@ -1190,6 +1216,8 @@ pub(crate) fn record_warm_start(
 /// obeys the 1-D formulas exactly); every other contact that pushed ends at
 /// rest. A ball that bounced off a wall while moving has spent its approach
 /// already: `hit_wall` marks those, and their contacts only stop.
+///
+/// Warm started from `warm` and recorded into `record` as the predict stage.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_project(
     bodies: &mut Bodies,
@@ -1200,6 +1228,7 @@ pub(crate) fn solve_project(
     ball_restitution: f64,
     hit_wall: &[bool],
     warm: Option<(&WarmStart, &[u32])>,
+    record: (&mut WarmStart, &[u32]),
 ) {
     crowd.gather(contacts, bodies.tumblers.len(), true, |p| p.pushed > 0.0);
     for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
@@ -1264,6 +1293,14 @@ pub(crate) fn solve_project(
             }
         });
     }
-    contacts.keep_row_impulses(|p| p.pushed > 0.0, |p, impulse| p.impulse = impulse);
+    let (warm_next, ids) = record;
+    contacts.keep_row_impulses(
+        |p| p.pushed > 0.0,
+        |p, impulse| p.impulse = impulse,
+        (&mut *warm_next, ids),
+    );
     contacts.keep_wall_impulses(|c| c.pushed > 0.0);
+    for c in &contacts.walls {
+        warm_next.record_wall(c.ball as usize, c.surface, c.impulse);
+    }
 }

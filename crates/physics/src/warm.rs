@@ -12,56 +12,52 @@
 //! add energy; [`crate::World::step`] takes such excess back out of the
 //! step's motion.
 
+use crate::contact::Pair;
 use crate::room::Surface;
-use rayon::prelude::*;
 
 /// Last step's normal impulses of ball pairs and ball-wall contacts.
 ///
 /// They are kept in last step's slot order (see [`crate::broadphase::Grid::order`]),
 /// which is the order of space and changes little from one step to the next,
-/// so that looking them up walks memory nearly in order.
+/// so that looking them up walks memory nearly in order. Each slot's
+/// impulses lie packed one after the other: a lookup reads a few bytes, not
+/// room for every partner a ball could have.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct WarmStart {
     /// Per ball number: its slot last step (`NONE`: it had none).
     slot_of: Vec<u32>,
-    slots: Vec<WarmSlot>,
+    /// Per slot: where its impulses lie in `partners` and `walls`.
+    kept: Vec<Kept>,
+    /// Per band of pairs, room for each of its pairs (see [`WarmPart`]).
+    partners: Vec<Partner>,
+    /// In slot order.
+    walls: Vec<WallImpulse>,
     /// The share of each impulse that a lookup gives (see [`WarmStart::weaken`]).
     strength: f64,
 }
 
-/// What the ball in one slot pushed last step: together, so that a lookup
-/// reads one place.
+/// Where one slot's impulses lie.
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct WarmSlot {
-    count: u8,
-    /// The balls of later slots it pushed (by number), and how hard.
-    partners: [u32; WarmSlot::PARTNERS],
-    impulses: [f32; WarmSlot::PARTNERS],
-    /// Per surface (in [`Surface::ALL`] order).
-    walls: [f32; 6],
+struct Kept {
+    /// `partners[first..first + pairs]`: the balls of later slots it pushed.
+    first: u32,
+    pairs: u32,
+    /// `walls[first_wall..first_wall + walls]`: the surfaces it pushed.
+    first_wall: u32,
+    walls: u32,
 }
 
-impl WarmSlot {
-    /// Equal spheres touch at most twelve others; a pair beyond that (only in
-    /// a crushed pile) starts cold.
-    const PARTNERS: usize = 12;
+/// A ball of a later slot that a slot's ball pushed (by number), and how hard.
+#[derive(Clone, Copy, Debug, Default)]
+struct Partner {
+    ball: u32,
+    impulse: f32,
+}
 
-    /// Records that this slot's ball pushed ball number `partner`, of a
-    /// later slot (see [`pair_owner`]).
-    pub fn record_partner(&mut self, partner: u32, impulse: f64) {
-        let n = self.count as usize;
-        if impulse > 0.0 && n < WarmSlot::PARTNERS {
-            self.partners[n] = partner;
-            self.impulses[n] = impulse as f32;
-            self.count += 1;
-        }
-    }
-
-    fn partner(&self, partner: u32) -> Option<f32> {
-        let n = self.count as usize;
-        let k = self.partners[..n].iter().position(|&p| p == partner)?;
-        Some(self.impulses[k])
-    }
+#[derive(Clone, Copy, Debug)]
+struct WallImpulse {
+    surface: Surface,
+    impulse: f32,
 }
 
 /// Which slot keeps the impulse between the balls in slots `i` and `j`
@@ -73,32 +69,53 @@ pub(crate) fn pair_owner(i: usize, j: usize, ids: &[u32]) -> (usize, u32) {
 impl WarmStart {
     const NONE: u32 = u32::MAX;
 
-    /// Forgets everything, ready to record a step whose slot `k` holds ball
-    /// number `ids[k]`, out of `balls` numbers.
-    pub fn begin(&mut self, ids: &[u32], balls: usize) {
+    /// Forgets everything, ready to record a step whose ball number `b`
+    /// lies in slot `slot_of[b]` (`NONE` for none) of `slots`, with `pairs`
+    /// ball pairs.
+    pub fn begin(&mut self, slot_of: &[u32], slots: usize, pairs: usize) {
         self.slot_of.clear();
-        self.slot_of.resize(balls, WarmStart::NONE);
-        for (slot, &id) in ids.iter().enumerate() {
-            self.slot_of[id as usize] = slot as u32;
+        self.slot_of.extend_from_slice(slot_of);
+        self.kept.clear();
+        self.kept.resize(slots, Kept::default());
+        // Room past a slot's count is never read: it need not be cleared.
+        if self.partners.len() < pairs {
+            self.partners.resize(pairs, Partner::default());
         }
-        // Partners past a slot's count are never read: only counts restart.
-        self.slots.resize(ids.len(), WarmSlot::default());
-        let forget = |s: &mut WarmSlot| {
-            s.count = 0;
-            s.walls = [0.0; 6];
-        };
-        if ids.len() >= PARALLEL_SLOTS {
-            self.slots.par_iter_mut().for_each(forget);
-        } else {
-            self.slots.iter_mut().for_each(forget);
-        }
+        self.walls.clear();
         self.strength = 1.0;
     }
 
-    /// Every slot, to record the pairs' impulses in (see
-    /// [`WarmSlot::record_partner`]).
-    pub fn slots_mut(&mut self) -> &mut [WarmSlot] {
-        &mut self.slots
+    /// The whole recording, to be split between bands of pairs (see
+    /// [`WarmPart::split`]).
+    pub fn recorder(&mut self) -> WarmPart<'_> {
+        WarmPart {
+            first_slot: 0,
+            kept: &mut self.kept,
+            first_pair: 0,
+            partners: &mut self.partners,
+        }
+    }
+
+    /// Records the impulse between the ball in slot `i` and surface `s`;
+    /// called in slot order.
+    pub fn record_wall(&mut self, i: usize, s: Surface, impulse: f64) {
+        if impulse <= 0.0 {
+            return;
+        }
+        let kept = &mut self.kept[i];
+        if kept.walls == 0 {
+            kept.first_wall = self.walls.len() as u32;
+        }
+        debug_assert_eq!(
+            (kept.first_wall + kept.walls) as usize,
+            self.walls.len(),
+            "walls recorded out of slot order"
+        );
+        kept.walls += 1;
+        self.walls.push(WallImpulse {
+            surface: s,
+            impulse: impulse as f32,
+        });
     }
 
     /// From now on, lookups give `share` of each impulse kept: a step that
@@ -120,35 +137,115 @@ impl WarmStart {
             return 0.0;
         };
         let (owner, partner) = if sa < sb { (sa, b) } else { (sb, a) };
-        self.slots[owner]
-            .partner(partner)
-            .map_or(0.0, |impulse| self.strength * impulse as f64)
+        let kept = self.kept[owner];
+        let first = kept.first as usize;
+        self.partners[first..first + kept.pairs as usize]
+            .iter()
+            .find(|p| p.ball == partner)
+            .map_or(0.0, |p| self.strength * p.impulse as f64)
     }
 
     /// Last step's impulse between ball number `ball` and surface `s`.
     pub fn wall(&self, ball: u32, s: Surface) -> f64 {
-        self.slot(ball).map_or(0.0, |slot| {
-            self.strength * self.slots[slot].walls[s.index()] as f64
-        })
-    }
-
-    /// Records the impulse between the ball in slot `i` and surface `s`.
-    pub fn record_wall(&mut self, i: usize, s: Surface, impulse: f64) {
-        self.slots[i].walls[s.index()] = impulse.max(0.0) as f32;
+        let Some(slot) = self.slot(ball) else {
+            return 0.0;
+        };
+        let kept = self.kept[slot];
+        let first = kept.first_wall as usize;
+        self.walls[first..first + kept.walls as usize]
+            .iter()
+            .find(|w| w.surface == s)
+            .map_or(0.0, |w| self.strength * w.impulse as f64)
     }
 }
 
-/// Below this many slots a warm start is begun on one thread.
-const PARALLEL_SLOTS: usize = 4096;
+/// The part of a recording that one or more bands of pairs write: the slots
+/// of their grid layers, which keep their pairs (see [`pair_owner`]), and
+/// room for their pairs. Parts apart are recorded side by side.
+pub(crate) struct WarmPart<'a> {
+    first_slot: usize,
+    kept: &'a mut [Kept],
+    first_pair: usize,
+    partners: &'a mut [Partner],
+}
+
+impl<'a> WarmPart<'a> {
+    /// The number of the first pair this part has room for.
+    pub fn first_pair(&self) -> usize {
+        self.first_pair
+    }
+
+    /// Splits the part before slot `slot` and before the room for pair
+    /// number `pair` (both counted over the whole recording).
+    pub fn split(self, slot: usize, pair: usize) -> (WarmPart<'a>, WarmPart<'a>) {
+        let (kept, later_kept) = self.kept.split_at_mut(slot - self.first_slot);
+        let (partners, later_partners) = self.partners.split_at_mut(pair - self.first_pair);
+        (
+            WarmPart {
+                first_slot: self.first_slot,
+                kept,
+                first_pair: self.first_pair,
+                partners,
+            },
+            WarmPart {
+                first_slot: slot,
+                kept: later_kept,
+                first_pair: pair,
+                partners: later_partners,
+            },
+        )
+    }
+
+    /// Records the `impulse` of every pair of `band` (slots of this part,
+    /// `ids` each slot's ball number) that pushed, into room for the
+    /// band's pairs.
+    pub fn record_pairs(&mut self, band: &[Pair], ids: &[u32]) {
+        let first = self.first_slot;
+        let owner = |p: &Pair| pair_owner(p.i as usize, p.j as usize, ids);
+        for p in band.iter().filter(|p| p.impulse > 0.0) {
+            self.kept[owner(p).0 - first].pairs += 1;
+        }
+        // Each slot's room follows the last one's, then fills from its start.
+        let mut next = self.first_pair as u32;
+        for kept in self.kept.iter_mut() {
+            kept.first = next;
+            next += kept.pairs;
+            kept.pairs = 0;
+        }
+        for p in band.iter().filter(|p| p.impulse > 0.0) {
+            let (slot, partner) = owner(p);
+            let kept = &mut self.kept[slot - first];
+            self.partners[(kept.first + kept.pairs) as usize - self.first_pair] = Partner {
+                ball: partner,
+                impulse: p.impulse as f32,
+            };
+            kept.pairs += 1;
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     impl WarmStart {
-        fn record_pair(&mut self, i: usize, j: usize, ids: &[u32], impulse: f64) {
-            let (owner, partner) = pair_owner(i, j, ids);
-            self.slots[owner].record_partner(partner, impulse);
+        /// Records one band of pairs `(i, j, impulse)` by slot, whose slot `k`
+        /// holds ball number `ids[k]`, out of `balls` numbers.
+        fn record(&mut self, ids: &[u32], balls: usize, pairs: &[(usize, usize, f64)]) {
+            let mut slot_of = vec![WarmStart::NONE; balls];
+            for (slot, &id) in ids.iter().enumerate() {
+                slot_of[id as usize] = slot as u32;
+            }
+            self.begin(&slot_of, ids.len(), pairs.len());
+            let band: Vec<Pair> = pairs
+                .iter()
+                .map(|&(i, j, impulse)| Pair {
+                    impulse,
+                    ..Pair::new(i, j, DVec3::Y, 0.0, 0.0)
+                })
+                .collect();
+            self.recorder().record_pairs(&band, ids);
         }
     }
 
@@ -157,36 +254,79 @@ mod tests {
         let mut w = WarmStart::default();
         // Slots 0..4 hold balls 3, 1, 0, 2; ball 4 is gone.
         let ids = [3, 1, 0, 2];
-        w.begin(&ids, 5);
-        w.record_pair(0, 1, &ids, 2.5);
-        w.record_pair(3, 2, &ids, 1.5);
-        w.record_pair(1, 2, &ids, 0.0);
+        w.record(&ids, 5, &[(0, 1, 2.5), (3, 2, 1.5), (1, 2, 0.0)]);
+        w.record_wall(1, Surface::Back, 0.5);
         w.record_wall(3, Surface::Floor, 4.0);
+        w.record_wall(3, Surface::Left, 3.0);
         assert_eq!(w.pair(3, 1), 2.5);
         assert_eq!(w.pair(1, 3), 2.5);
         assert_eq!(w.pair(0, 2), 1.5);
         assert_eq!(w.pair(1, 0), 0.0);
         assert_eq!(w.pair(4, 0), 0.0);
+        assert_eq!(w.wall(1, Surface::Back), 0.5);
         assert_eq!(w.wall(2, Surface::Floor), 4.0);
+        assert_eq!(w.wall(2, Surface::Left), 3.0);
         assert_eq!(w.wall(2, Surface::Ceiling), 0.0);
+        assert_eq!(w.wall(3, Surface::Floor), 0.0);
         assert_eq!(w.wall(4, Surface::Floor), 0.0);
         w.weaken(0.5);
         assert_eq!(w.pair(3, 1), 1.25);
         assert_eq!(w.wall(2, Surface::Floor), 2.0);
-        w.begin(&ids, 5);
+        w.record(&ids, 5, &[]);
         assert_eq!(w.pair(3, 1), 0.0);
         assert_eq!(w.wall(2, Surface::Floor), 0.0);
     }
 
     #[test]
-    fn a_ball_keeps_at_most_twelve_partners() {
+    fn a_ball_keeps_every_partner_it_pushed_and_no_other() {
         let mut w = WarmStart::default();
         let ids: Vec<u32> = (0..20).collect();
-        w.begin(&ids, 20);
-        for b in 1..20 {
-            w.record_pair(0, b, &ids, b as f64);
+        // Slot 0 pushed every later slot but 7, slot 2 pushed 3.
+        let mut pairs: Vec<(usize, usize, f64)> = (1..20).map(|b| (0, b, b as f64)).collect();
+        pairs[6].2 = 0.0;
+        pairs.insert(3, (3, 2, 0.25));
+        w.record(&ids, 20, &pairs);
+        assert_eq!(w.pair(0, 1), 1.0);
+        assert_eq!(w.pair(0, 19), 19.0);
+        assert_eq!(w.pair(19, 0), 19.0);
+        assert_eq!(w.pair(0, 7), 0.0);
+        assert_eq!(w.pair(2, 3), 0.25);
+        assert_eq!(w.pair(1, 2), 0.0);
+    }
+
+    #[test]
+    fn parts_split_between_bands_record_what_the_whole_would() {
+        // Slots 0..6 hold balls in reverse; bands: slots 0..2 with pairs
+        // (0, 1), (1, 3); slots 2..6 with pairs (2, 5), (4, 5), (2, 3).
+        let ids: Vec<u32> = (0..6).rev().collect();
+        let bands = [
+            vec![(0, 1, 1.0), (1, 3, 2.0)],
+            vec![(2, 5, 3.0), (4, 5, 4.0), (2, 3, 5.0)],
+        ];
+        let all: Vec<_> = bands.concat();
+        let mut whole = WarmStart::default();
+        whole.record(&ids, 6, &all);
+        // The same pairs recorded in two parts, the second first.
+        let mut split = WarmStart::default();
+        let slot_of: Vec<u32> = (0..6).rev().collect();
+        split.begin(&slot_of, 6, all.len());
+        let to_pairs = |band: &[(usize, usize, f64)]| -> Vec<Pair> {
+            band.iter()
+                .map(|&(i, j, impulse)| Pair {
+                    impulse,
+                    ..Pair::new(i, j, DVec3::Y, 0.0, 0.0)
+                })
+                .collect()
+        };
+        let (mut first, mut second) = split.recorder().split(2, bands[0].len());
+        second.record_pairs(&to_pairs(&bands[1]), &ids);
+        first.record_pairs(&to_pairs(&bands[0]), &ids);
+        for a in 0..6 {
+            for b in 0..6 {
+                assert_eq!(split.pair(a, b), whole.pair(a, b), "balls {a} and {b}");
+            }
         }
-        assert_eq!(w.pair(0, 12), 12.0);
-        assert_eq!(w.pair(0, 13), 0.0);
+        assert_eq!(split.pair(ids[1], ids[3]), 2.0);
+        assert_eq!(split.pair(ids[3], ids[2]), 5.0);
     }
 }

@@ -18,7 +18,7 @@ use crate::ccd::first_impact;
 use crate::config::{Rgb, WorldConfig};
 use crate::contact::{
     Bodies, BodyRef, Contact, Contacts, Crowd, PARALLEL_PAIRS, Pair, Stage, WallContact,
-    record_warm_start, solve_predict, solve_project,
+    solve_predict, solve_project,
 };
 use crate::events::{Event, EventKind};
 use crate::fireball::Fireball;
@@ -122,6 +122,10 @@ struct SolverParts<'a> {
     hit_wall: &'a [bool],
     /// Last step's impulses of the stage, and each slot's ball number.
     warm: Option<(&'a WarmStart, &'a [u32])>,
+    /// Where this step's impulses of each stage are recorded.
+    record: &'a mut [WarmStart; 2],
+    /// Each slot's ball number.
+    ids: &'a [u32],
 }
 
 /// A tumbler hit by a pick ray.
@@ -323,7 +327,7 @@ impl World {
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
         // New balls under old numbers: last step's impulses mean nothing now.
         for w in self.warm.iter_mut().chain(&mut self.warm_next) {
-            w.begin(&[], 0);
+            w.begin(&[], 0, 0);
         }
         self.spawn_balls()
     }
@@ -644,7 +648,9 @@ impl World {
             self.config.solver.iterations,
             self.config.solver.bounce_threshold,
         );
+        self.begin_recording(Stage::Predict);
         let mut parts = self.solver_parts(warm_start.then_some(Stage::Predict));
+        let record = &mut parts.record[Stage::Predict as usize];
         solve_predict(
             &mut parts.bodies,
             parts.contacts,
@@ -653,8 +659,8 @@ impl World {
             dt,
             threshold,
             parts.warm,
+            (record, parts.ids),
         );
-        self.record_warm_start(Stage::Predict);
         self.apply_rolling_resistance();
 
         self.move_balls(dt, g);
@@ -662,7 +668,9 @@ impl World {
 
         self.update_contact_inertia();
         let restitution = self.config.balls.restitution;
+        self.begin_recording(Stage::Project);
         let mut parts = self.solver_parts(warm_start.then_some(Stage::Project));
+        let record = &mut parts.record[Stage::Project as usize];
         solve_project(
             &mut parts.bodies,
             parts.contacts,
@@ -672,8 +680,8 @@ impl World {
             restitution,
             parts.hit_wall,
             parts.warm,
+            (record, parts.ids),
         );
-        self.record_warm_start(Stage::Project);
         self.report_contacts();
         // Pushing sunk balls apart lifts them: it may spend what the step
         // has lost, no more.
@@ -740,15 +748,16 @@ impl World {
         }
     }
 
-    fn record_warm_start(&mut self, stage: Stage) {
-        // In sorted order `self.sorted` holds every ball number.
-        let warm = &mut self.warm_next[stage as usize];
-        warm.begin(self.grid.order(), self.sorted.len());
-        record_warm_start(&mut self.contacts, warm, self.grid.order(), stage);
+    /// Forgets what the next step's warm start of `stage` held, ready to
+    /// record this step's impulses in this step's slots.
+    fn begin_recording(&mut self, stage: Stage) {
+        let (slot_of, slots) = (self.grid.ball_slots(), self.grid.order().len());
+        let pairs = self.contacts.pair_count();
+        self.warm_next[stage as usize].begin(slot_of, slots, pairs);
     }
 
     /// What the solver works on, borrowed apart, with the warm start of
-    /// `stage` if there is one.
+    /// `stage` if there is one, and where to record the next step's.
     fn solver_parts(&mut self, stage: Option<Stage>) -> SolverParts<'_> {
         let bodies = Bodies {
             balls: &mut self.balls,
@@ -765,6 +774,8 @@ impl World {
             crowd: &mut self.crowd,
             hit_wall: &self.hit_wall,
             warm: stage.map(|s| (&self.warm[s as usize], self.grid.order())),
+            record: &mut self.warm_next,
+            ids: self.grid.order(),
         }
     }
 
