@@ -105,10 +105,10 @@ pub(crate) struct Pair {
     /// Relative normal velocity before the step (negative: approaching).
     /// Gravity's half step moves both balls alike, so it stays the same.
     pub approach: f64,
-    /// Accumulated normal impulse of the current stage.
-    pub impulse: f64,
-    /// Normal impulse of the predict stage (> 0: the pair pushed).
-    pub pushed: f64,
+    /// Whether the pair pushed in the predict stage. Its impulses are the
+    /// rows' (see [`RowBand`]): kept out of the pair, which is then only
+    /// read once found, and smaller.
+    pub pushed: bool,
 }
 
 impl Pair {
@@ -119,8 +119,7 @@ impl Pair {
             normal,
             gap,
             approach,
-            impulse: 0.0,
-            pushed: 0.0,
+            pushed: false,
         }
     }
 }
@@ -554,33 +553,48 @@ impl Contacts {
         sweep_bands(&mut self.rows, &self.layers, &mut balls.velocity, &solve);
     }
 
-    /// Hands each pair its row's impulse, `keep(pair, impulse)`, 0 for the
-    /// pairs without a row, and records the impulse each pair then holds
-    /// for the next step's warm start in `record` (begun for this step's
-    /// slots, with each slot's ball number); `chosen` tells them as in
-    /// [`Contacts::start_rows`].
-    fn keep_row_impulses<F, G>(&mut self, chosen: F, keep: G, record: (&mut WarmStart, &[u32]))
-    where
+    /// Records the impulse of each pair's row for the next step's warm
+    /// start in `record` (begun for this step's slots, with each slot's
+    /// ball number), 0 for the pairs without a row; `chosen` tells them as
+    /// in [`Contacts::start_rows`]. With `keep`, hands each pair its
+    /// impulse too: `keep(pair, impulse)`.
+    fn keep_row_impulses<F, G>(
+        &mut self,
+        chosen: F,
+        keep: Option<G>,
+        record: (&mut WarmStart, &[u32]),
+    ) where
         F: Fn(&Pair) -> bool + Sync,
         G: Fn(&mut Pair, f64) + Sync,
     {
         let (warm, ids) = record;
         let rows = &self.rows;
         let hand = |z: usize, band: &mut Vec<Pair>, part: &mut WarmPart| {
-            let mut impulses = rows[z].impulses.iter();
-            for p in band.iter_mut() {
-                let impulse = if chosen(p) {
-                    impulses.next().copied().unwrap_or(0.0)
-                } else {
-                    0.0
-                };
-                keep(p, impulse);
+            let row_impulses = &rows[z].impulses;
+            if let Some(keep) = &keep {
+                let mut rows = row_impulses.iter();
+                for p in band.iter_mut() {
+                    keep(p, next_impulse(chosen(p), &mut rows));
+                }
             }
-            part.record_pairs(band, ids);
+            let mut rows = row_impulses.iter();
+            let chosen = &chosen;
+            let impulses = band.iter().map(move |p| next_impulse(chosen(p), &mut rows));
+            part.record_pairs(band, impulses, ids);
         };
         let parallel = self.pair_count() >= PARALLEL_PAIRS;
         let part = warm.recorder();
         by_band_with_own_part(&mut self.bands, 0, &self.layers, part, parallel, &hand);
+    }
+}
+
+/// The impulse of a band's next pair: its row's, the next of `rows`, if
+/// it has one.
+fn next_impulse(has_row: bool, rows: &mut std::slice::Iter<f64>) -> f64 {
+    if has_row {
+        rows.next().copied().unwrap_or(0.0)
+    } else {
+        0.0
     }
 }
 
@@ -1144,14 +1158,13 @@ pub(crate) fn solve_predict(
     let (warm_next, ids) = record;
     contacts.keep_row_impulses(
         |_| true,
-        |p, impulse| {
-            p.impulse = impulse;
-            p.pushed = impulse;
-            if fast(p.pushed, p.approach) {
+        Some(|p: &mut Pair, impulse: f64| {
+            p.pushed = impulse > 0.0;
+            if fast(impulse, p.approach) {
                 crowd.will_ask(p.i);
                 crowd.will_ask(p.j);
             }
-        },
+        }),
         (&mut *warm_next, ids),
     );
     for c in contacts.others.iter_mut() {
@@ -1230,7 +1243,7 @@ pub(crate) fn solve_project(
     warm: Option<(&WarmStart, &[u32])>,
     record: (&mut WarmStart, &[u32]),
 ) {
-    crowd.gather(contacts, bodies.tumblers.len(), true, |p| p.pushed > 0.0);
+    crowd.gather(contacts, bodies.tumblers.len(), true, |p| p.pushed);
     for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
         crowd.add_if_asked(c);
     }
@@ -1258,7 +1271,7 @@ pub(crate) fn solve_project(
     // A bouncing pair starts cold: its impulse is of this impact alone.
     let crowd = &*crowd;
     contacts.start_rows(bodies.balls, |p| {
-        (p.pushed > 0.0).then(|| {
+        p.pushed.then(|| {
             let bounce = p.approach < -bounce_threshold
                 && !hit_wall[p.i as usize]
                 && !hit_wall[p.j as usize]
@@ -1295,8 +1308,8 @@ pub(crate) fn solve_project(
     }
     let (warm_next, ids) = record;
     contacts.keep_row_impulses(
-        |p| p.pushed > 0.0,
-        |p, impulse| p.impulse = impulse,
+        |p| p.pushed,
+        None::<fn(&mut Pair, f64)>,
         (&mut *warm_next, ids),
     );
     contacts.keep_wall_impulses(|c| c.pushed > 0.0);

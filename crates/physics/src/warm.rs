@@ -196,13 +196,17 @@ impl<'a> WarmPart<'a> {
         )
     }
 
-    /// Records the `impulse` of every pair of `band` (slots of this part,
-    /// `ids` each slot's ball number) that pushed, into room for the
-    /// band's pairs.
-    pub fn record_pairs(&mut self, band: &[Pair], ids: &[u32]) {
+    /// Records the pairs of `band` (slots of this part, `ids` each slot's
+    /// ball number) that pushed, `impulses` giving each pair's impulse in
+    /// turn, into room for the band's pairs.
+    pub fn record_pairs<I>(&mut self, band: &[Pair], impulses: I, ids: &[u32])
+    where
+        I: Iterator<Item = f64> + Clone,
+    {
         let first = self.first_slot;
         let owner = |p: &Pair| pair_owner(p.i as usize, p.j as usize, ids);
-        for p in band.iter().filter(|p| p.impulse > 0.0) {
+        let pushed = || band.iter().zip(impulses.clone()).filter(|(_, f)| *f > 0.0);
+        for (p, _) in pushed() {
             self.kept[owner(p).0 - first].pairs += 1;
         }
         // Each slot's room follows the last one's, then fills from its start.
@@ -212,12 +216,12 @@ impl<'a> WarmPart<'a> {
             next += kept.pairs;
             kept.pairs = 0;
         }
-        for p in band.iter().filter(|p| p.impulse > 0.0) {
+        for (p, impulse) in pushed() {
             let (slot, partner) = owner(p);
             let kept = &mut self.kept[slot - first];
             self.partners[(kept.first + kept.pairs) as usize - self.first_pair] = Partner {
                 ball: partner,
-                impulse: p.impulse as f32,
+                impulse: impulse as f32,
             };
             kept.pairs += 1;
         }
@@ -229,6 +233,14 @@ mod tests {
     use super::*;
     use glam::DVec3;
 
+    /// Pairs `(i, j, impulse)` by slot.
+    fn to_pairs(pairs: &[(usize, usize, f64)]) -> Vec<Pair> {
+        pairs
+            .iter()
+            .map(|&(i, j, _)| Pair::new(i, j, DVec3::Y, 0.0, 0.0))
+            .collect()
+    }
+
     impl WarmStart {
         /// Records one band of pairs `(i, j, impulse)` by slot, whose slot `k`
         /// holds ball number `ids[k]`, out of `balls` numbers.
@@ -238,14 +250,9 @@ mod tests {
                 slot_of[id as usize] = slot as u32;
             }
             self.begin(&slot_of, ids.len(), pairs.len());
-            let band: Vec<Pair> = pairs
-                .iter()
-                .map(|&(i, j, impulse)| Pair {
-                    impulse,
-                    ..Pair::new(i, j, DVec3::Y, 0.0, 0.0)
-                })
-                .collect();
-            self.recorder().record_pairs(&band, ids);
+            let band = to_pairs(pairs);
+            let impulses = pairs.iter().map(|p| p.2);
+            self.recorder().record_pairs(&band, impulses, ids);
         }
     }
 
@@ -310,17 +317,12 @@ mod tests {
         let mut split = WarmStart::default();
         let slot_of: Vec<u32> = (0..6).rev().collect();
         split.begin(&slot_of, 6, all.len());
-        let to_pairs = |band: &[(usize, usize, f64)]| -> Vec<Pair> {
-            band.iter()
-                .map(|&(i, j, impulse)| Pair {
-                    impulse,
-                    ..Pair::new(i, j, DVec3::Y, 0.0, 0.0)
-                })
-                .collect()
-        };
+        let impulses = |band: &[(usize, usize, f64)]| band.iter().map(|p| p.2).collect::<Vec<_>>();
         let (mut first, mut second) = split.recorder().split(2, bands[0].len());
-        second.record_pairs(&to_pairs(&bands[1]), &ids);
-        first.record_pairs(&to_pairs(&bands[0]), &ids);
+        let later = impulses(&bands[1]);
+        second.record_pairs(&to_pairs(&bands[1]), later.into_iter(), &ids);
+        let earlier = impulses(&bands[0]);
+        first.record_pairs(&to_pairs(&bands[0]), earlier.into_iter(), &ids);
         for a in 0..6 {
             for b in 0..6 {
                 assert_eq!(split.pair(a, b), whole.pair(a, b), "balls {a} and {b}");

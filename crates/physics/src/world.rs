@@ -1140,7 +1140,7 @@ impl World {
     fn report_contacts(&mut self) {
         let threshold = self.config.solver.event_threshold;
         let hits = &mut self.picked_pairs;
-        let hit = |p: &Pair| p.pushed > 0.0 && -p.approach > threshold;
+        let hit = |p: &Pair| p.pushed && -p.approach > threshold;
         self.contacts.copy_pairs_where(hit, hits);
         for p in hits.iter() {
             let (i, j) = (p.i as usize, p.j as usize);
