@@ -163,8 +163,8 @@ impl WallContact {
     }
 }
 
-/// A pair as a solver stage iterates on it: only what the iterations read,
-/// two thirds of a [`Pair`]. A crowd's rows are streamed from memory once
+/// A pair as a solver stage iterates on it: only what the iterations read.
+/// A crowd's rows are streamed from memory once
 /// per iteration, and in a large pile that stream is much of the work.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PairRow {
