@@ -105,9 +105,8 @@ pub(crate) struct Pair {
     /// Relative normal velocity before the step (negative: approaching).
     /// Gravity's half step moves both balls alike, so it stays the same.
     pub approach: f64,
-    /// Whether the pair pushed in the predict stage. Its impulses are the
-    /// rows' (see [`RowBand`]): kept out of the pair, which is then only
-    /// read once found, and smaller.
+    /// Whether the pair pushed in the predict stage. Its impulses live in
+    /// its rows (see [`RowBand`]), so that the pair stays small.
     pub pushed: bool,
 }
 
@@ -164,8 +163,8 @@ impl WallContact {
 }
 
 /// A pair as a solver stage iterates on it: only what the iterations read.
-/// A crowd's rows are streamed from memory once
-/// per iteration, and in a large pile that stream is much of the work.
+/// A crowd's rows are streamed from memory once per iteration, and in a
+/// large pile that stream is much of the work.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PairRow {
     i: u32,
@@ -601,8 +600,8 @@ fn next_impulse(has_row: bool, rows: &mut std::slice::Iter<f64>) -> f64 {
 /// Calls `f(z, band, part)` for the bands `bands`, numbered from
 /// `first_band` on, side by side: `part` is the part of a warm start's
 /// recording that band `z` writes (see [`WarmPart`]). A band's pairs are
-/// kept by slots of its own grid layer (see [`crate::warm::pair_owner`]), so no two
-/// bands write one place.
+/// kept by slots of its own grid layer (see [`crate::warm::pair_owner`]),
+/// so no two bands write one place.
 fn by_band_with_own_part<F>(
     bands: &mut [Vec<Pair>],
     first_band: usize,
