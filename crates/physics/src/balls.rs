@@ -15,7 +15,7 @@ pub enum Tint {
 /// Uniform solid spheres. Velocities are instantaneous velocities at the
 /// current time; `spin` is the angular velocity, which friction with the
 /// surfaces couples to the sliding velocity so that balls roll.
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Debug, Default, PartialEq)]
 pub struct Balls {
     pub(crate) position: Vec<DVec3>,
     pub(crate) velocity: Vec<DVec3>,
@@ -25,6 +25,28 @@ pub struct Balls {
     pub(crate) inv_mass: Vec<f64>,
     pub(crate) tint: Vec<Tint>,
     pub(crate) alive: Vec<bool>,
+}
+
+impl Clone for Balls {
+    fn clone(&self) -> Balls {
+        let mut copy = Balls::default();
+        copy.clone_from(self);
+        copy
+    }
+
+    /// Field by field into the storage there is: the world keeps a copy of
+    /// its balls from before each step (see [`crate::World::step`]), and
+    /// copying into fresh memory every step would cost more than the copy.
+    fn clone_from(&mut self, source: &Balls) {
+        self.position.clone_from(&source.position);
+        self.velocity.clone_from(&source.velocity);
+        self.spin.clone_from(&source.spin);
+        self.radius.clone_from(&source.radius);
+        self.mass.clone_from(&source.mass);
+        self.inv_mass.clone_from(&source.inv_mass);
+        self.tint.clone_from(&source.tint);
+        self.alive.clone_from(&source.alive);
+    }
 }
 
 impl Balls {
@@ -104,4 +126,31 @@ impl Balls {
 /// Moment of inertia of a uniform solid sphere about its centre.
 pub(crate) fn sphere_inertia(mass: f64, radius: f64) -> f64 {
     0.4 * mass * radius * radius
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_copy_kept_between_steps_takes_every_field_into_its_own_storage() {
+        let mut source = Balls::with_uniform(3, 0.1, 2.0);
+        source.set(1, DVec3::new(1.0, 2.0, 3.0), DVec3::new(-1.0, 0.0, 4.0));
+        source.spin[2] = DVec3::new(0.0, 5.0, 0.0);
+        source.radius[0] = 0.2;
+        source.set_mass(2, 3.0);
+        source.tint[1] = Tint::Tumbler(4);
+        source.alive[0] = false;
+        // A longer copy with other contents, as the one kept last step.
+        let mut copy = Balls::with_uniform(5, 0.3, 1.0);
+        let storage = copy.position.as_ptr();
+        copy.clone_from(&source);
+        assert_eq!(copy, source);
+        assert_eq!(
+            copy.position.as_ptr(),
+            storage,
+            "the copy moved to new storage"
+        );
+        assert_eq!(source.clone(), source);
+    }
 }
