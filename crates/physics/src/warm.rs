@@ -47,6 +47,16 @@ struct Kept {
     walls: u32,
 }
 
+impl Kept {
+    fn partner_range(&self) -> std::ops::Range<usize> {
+        self.first as usize..(self.first + self.pairs) as usize
+    }
+
+    fn wall_range(&self) -> std::ops::Range<usize> {
+        self.first_wall as usize..(self.first_wall + self.walls) as usize
+    }
+}
+
 /// A ball of a later slot that a slot's ball pushed (by number), and how hard.
 #[derive(Clone, Copy, Debug, Default)]
 struct Partner {
@@ -137,12 +147,8 @@ impl WarmStart {
             return 0.0;
         };
         let (owner, partner) = if sa < sb { (sa, b) } else { (sb, a) };
-        let kept = self.kept[owner];
-        let first = kept.first as usize;
-        self.partners[first..first + kept.pairs as usize]
-            .iter()
-            .find(|p| p.ball == partner)
-            .map_or(0.0, |p| self.strength * p.impulse as f64)
+        let mut kept = self.partners[self.kept[owner].partner_range()].iter();
+        self.share(kept.find(|p| p.ball == partner).map(|p| p.impulse))
     }
 
     /// Last step's impulse between ball number `ball` and surface `s`.
@@ -150,12 +156,13 @@ impl WarmStart {
         let Some(slot) = self.slot(ball) else {
             return 0.0;
         };
-        let kept = self.kept[slot];
-        let first = kept.first_wall as usize;
-        self.walls[first..first + kept.walls as usize]
-            .iter()
-            .find(|w| w.surface == s)
-            .map_or(0.0, |w| self.strength * w.impulse as f64)
+        let mut kept = self.walls[self.kept[slot].wall_range()].iter();
+        self.share(kept.find(|w| w.surface == s).map(|w| w.impulse))
+    }
+
+    /// The share of a kept impulse that a lookup gives, 0 for none.
+    fn share(&self, impulse: Option<f32>) -> f64 {
+        impulse.map_or(0.0, |impulse| self.strength * impulse as f64)
     }
 }
 
