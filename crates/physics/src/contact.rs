@@ -372,6 +372,8 @@ pub(crate) struct Contacts {
     rows: Vec<RowBand>,
     /// The ball-wall contacts a solver stage iterates on (see [`WallRow`]).
     wall_rows: WallRows,
+    /// Per band, the pairs picked by [`Contacts::copy_pairs_where`].
+    picked: Vec<Vec<Pair>>,
 }
 
 impl Contacts {
@@ -399,20 +401,25 @@ impl Contacts {
 
     /// Fills `into` with the pairs that `choose` picks, in band order: a
     /// search through every pair, on all threads, for the few that need
-    /// more than the solver gives them.
-    pub fn copy_pairs_where<F>(&self, choose: F, into: &mut Vec<Pair>)
+    /// more than the solver gives them. Each band picks into storage of its
+    /// own, kept between steps, so that the search allocates nothing.
+    pub fn copy_pairs_where<F>(&mut self, choose: F, into: &mut Vec<Pair>)
     where
         F: Fn(&Pair) -> bool + Sync,
     {
         into.clear();
-        if self.pair_count() >= PARALLEL_PAIRS {
-            let chosen = self
-                .bands
-                .par_iter()
-                .flat_map_iter(|band| band.iter().filter(|p| choose(p)));
-            into.par_extend(chosen.copied());
-        } else {
+        if self.pair_count() < PARALLEL_PAIRS {
             into.extend(self.pairs().filter(|p| choose(p)).copied());
+            return;
+        }
+        self.picked.resize_with(self.bands.len(), Vec::new);
+        let pick = |(band, picked): (&Vec<Pair>, &mut Vec<Pair>)| {
+            picked.clear();
+            picked.extend(band.iter().filter(|p| choose(p)).copied());
+        };
+        self.bands.par_iter().zip(&mut self.picked).for_each(pick);
+        for picked in &self.picked[..self.bands.len()] {
+            into.extend_from_slice(picked);
         }
     }
 

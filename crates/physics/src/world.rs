@@ -28,6 +28,7 @@ use crate::tumbler::{Grip, GroundedParams, Tumbler, TumblerShape};
 use crate::warm::WarmStart;
 use glam::{DMat3, DQuat, DVec3, Vec4};
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Overlaps smaller than this are left alone (metres).
@@ -97,21 +98,31 @@ where
 
 /// Adds up `part(range)` over the balls `0..count` in runs of a fixed
 /// length, in order: the same sum on any number of threads, worked out on
-/// all of them for many balls.
+/// all of them for many balls. The runs' sums are kept on the stack, a
+/// batch at a time, so that a step allocates nothing.
 fn sum_in_runs<T, P>(count: usize, part: P) -> T
 where
-    T: Default + Send + std::ops::Add<Output = T>,
+    T: Copy + Default + Send + std::ops::Add<Output = T>,
     P: Fn(std::ops::Range<usize>) -> T + Sync,
 {
     const RUN: usize = 4096;
+    const BATCH: usize = 64;
     let run = |r: usize| part(r * RUN..((r + 1) * RUN).min(count));
     let runs = count.div_ceil(RUN);
-    if count >= PARALLEL_BALLS {
-        let parts: Vec<T> = (0..runs).into_par_iter().map(run).collect();
-        parts.into_iter().fold(T::default(), |a, b| a + b)
-    } else {
-        (0..runs).map(run).fold(T::default(), |a, b| a + b)
+    if count < PARALLEL_BALLS {
+        return (0..runs).map(run).fold(T::default(), |a, b| a + b);
     }
+    let mut sums = [T::default(); BATCH];
+    let mut total = T::default();
+    for first in (0..runs).step_by(BATCH) {
+        let batch = &mut sums[..BATCH.min(runs - first)];
+        batch
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(r, sum)| *sum = run(first + r));
+        total = batch.iter().fold(total, |a, &b| a + b);
+    }
+    total
 }
 
 /// The world's parts that the contact solver reads and writes.
@@ -140,7 +151,8 @@ pub struct Pick {
 pub struct World {
     config: WorldConfig,
     room: Room,
-    shape: TumblerShape,
+    /// Shared, so that a step may hold it while it changes the world.
+    shape: Arc<TumblerShape>,
     balls: Balls,
     /// The live balls in the grid's cell order, which the step works on so
     /// that neighbours in space are neighbours in memory (see `step`).
@@ -247,7 +259,7 @@ impl World {
             before_step: Default::default(),
             retakes: 0,
             room,
-            shape,
+            shape: Arc::new(shape),
             config,
         };
         world.spawn_balls()?;
@@ -1263,8 +1275,8 @@ impl World {
     /// floor. Crowds of balls were pushed apart together already (see
     /// `push_apart_sunk_balls`).
     fn separate_overlaps(&mut self) {
-        let shape = self.shape.clone();
-        let shape = &shape;
+        let shape = Arc::clone(&self.shape);
+        let shape = &*shape;
         let mut lone_pairs = std::mem::take(&mut self.picked_pairs);
         let partners = &self.ball_partners;
         let lone = |p: &Pair| partners[p.i as usize] == 1 && partners[p.j as usize] == 1;

@@ -12,6 +12,17 @@ pub fn empty_room() -> WorldConfig {
     cfg
 }
 
+/// Enough balls in a small room that contacts are found and solved on
+/// several threads (both solver stages switch at a few thousand).
+pub fn crowded_pit() -> WorldConfig {
+    let mut cfg = WorldConfig::default();
+    cfg.room.size = DVec3::new(4.0, 3.0, 4.0);
+    cfg.tumblers.placements.clear();
+    cfg.balls.count = 3000;
+    cfg.balls.radius = 0.08;
+    cfg
+}
+
 pub fn tumbler_at(x: f64, z: f64, tilt_axis: DVec3, tilt_deg: f64) -> TumblerPlacement {
     TumblerPlacement {
         x,

@@ -3,20 +3,8 @@
 
 mod common;
 
-use common::{build, state_bits};
-use glam::DVec3;
-use rolypoly_physics::{World, WorldConfig};
-
-/// Enough balls in a small room that contacts are found and solved on
-/// several threads (both stages switch at a few thousand).
-fn crowded_pit() -> WorldConfig {
-    let mut cfg = WorldConfig::default();
-    cfg.room.size = DVec3::new(4.0, 3.0, 4.0);
-    cfg.tumblers.placements.clear();
-    cfg.balls.count = 3000;
-    cfg.balls.radius = 0.08;
-    cfg
-}
+use common::{build, crowded_pit, state_bits};
+use rolypoly_physics::World;
 
 fn run_on(threads: usize, steps: usize) -> (World, usize) {
     let pool = rayon::ThreadPoolBuilder::new()
