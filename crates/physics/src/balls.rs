@@ -4,6 +4,9 @@
 use crate::room::Surface;
 use glam::DVec3;
 
+/// From this many live balls on, work over every ball runs on all threads.
+pub(crate) const PARALLEL_BALLS: usize = 2048;
+
 /// What colour a ball has taken on (P5): white until it hits something.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Tint {
@@ -37,15 +40,36 @@ impl Clone for Balls {
     /// Field by field into the storage there is: the world keeps a copy of
     /// its balls from before each step (see [`crate::World::step`]), and
     /// copying into fresh memory every step would cost more than the copy.
+    /// Many balls are copied on two threads, each about half the bytes.
     fn clone_from(&mut self, source: &Balls) {
-        self.position.clone_from(&source.position);
-        self.velocity.clone_from(&source.velocity);
-        self.spin.clone_from(&source.spin);
-        self.radius.clone_from(&source.radius);
-        self.mass.clone_from(&source.mass);
-        self.inv_mass.clone_from(&source.inv_mass);
-        self.tint.clone_from(&source.tint);
-        self.alive.clone_from(&source.alive);
+        let Balls {
+            position,
+            velocity,
+            spin,
+            radius,
+            mass,
+            inv_mass,
+            tint,
+            alive,
+        } = self;
+        let mut motion = || {
+            position.clone_from(&source.position);
+            velocity.clone_from(&source.velocity);
+            spin.clone_from(&source.spin);
+        };
+        let mut rest = || {
+            radius.clone_from(&source.radius);
+            mass.clone_from(&source.mass);
+            inv_mass.clone_from(&source.inv_mass);
+            tint.clone_from(&source.tint);
+            alive.clone_from(&source.alive);
+        };
+        if source.len() >= PARALLEL_BALLS {
+            rayon::join(motion, rest);
+        } else {
+            motion();
+            rest();
+        }
     }
 }
 

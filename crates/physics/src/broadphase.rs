@@ -5,7 +5,9 @@
 //! nothing once warm. Pairs come out in a fixed order (by cell, then index),
 //! which keeps the solver deterministic.
 
+use crate::balls::PARALLEL_BALLS;
 use glam::{DVec3, Vec4};
+use rayon::prelude::*;
 
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Grid {
@@ -69,16 +71,25 @@ impl Grid {
 
     /// Sorts the live balls into cells.
     pub fn rebuild(&mut self, positions: &[DVec3], alive: &[bool]) {
-        self.cell_start.fill(0);
-        self.ball_cell.clear();
-        for (p, &live) in positions.iter().zip(alive) {
-            let c = if live {
+        // Each ball's cell, on all threads for many balls.
+        let mut ball_cell = std::mem::take(&mut self.ball_cell);
+        ball_cell.clear();
+        let cell_of = |(p, &live): (&DVec3, &bool)| {
+            if live {
                 self.index(self.coords(*p)) as u32
             } else {
                 u32::MAX
-            };
-            self.ball_cell.push(c);
-            if live {
+            }
+        };
+        if positions.len() >= PARALLEL_BALLS {
+            ball_cell.par_extend(positions.par_iter().zip(alive).map(cell_of));
+        } else {
+            ball_cell.extend(positions.iter().zip(alive).map(cell_of));
+        }
+        self.ball_cell = ball_cell;
+        self.cell_start.fill(0);
+        for &c in &self.ball_cell {
+            if c != u32::MAX {
                 self.cell_start[c as usize + 1] += 1;
             }
         }

@@ -12,7 +12,7 @@
 //! Everything runs in a fixed order on `f64`, so the same configuration,
 //! seed and inputs give bit-identical states (P10).
 
-use crate::balls::{Balls, Tint};
+use crate::balls::{Balls, PARALLEL_BALLS, Tint};
 use crate::broadphase::Grid;
 use crate::ccd::first_impact;
 use crate::config::{Rgb, WorldConfig};
@@ -35,8 +35,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 const OVERLAP_SLOP: f64 = 1e-5;
 /// A ball this close to a wall is touching it (metres).
 const TOUCH_SLOP: f64 = 1e-6;
-/// From this many live balls on, contacts are found on all threads.
-const PARALLEL_BALLS: usize = 2048;
 /// Balls sunk into each other deeper than this share of their radii's sum
 /// are pushed apart down to it (see `push_apart_sunk_balls`).
 const SUNK_SLOP: f64 = 0.005;
