@@ -20,7 +20,7 @@
 use crate::balls::{Balls, sphere_inertia};
 use crate::room::Surface;
 use crate::tumbler::{Response, Tumbler, TumblerShape};
-use crate::warm::{WarmPart, WarmStart};
+use crate::warm::{Held, WarmPart, WarmStart};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -108,6 +108,9 @@ pub(crate) struct Pair {
     /// Whether the pair pushed in the predict stage. Its impulses live in
     /// its rows (see [`RowBand`]), so that the pair stays small.
     pub pushed: bool,
+    /// Last step's impulse of the project stage, as kept (see
+    /// [`WarmStart::pair`]): looked up with the predict stage's.
+    pub project_start: f32,
 }
 
 impl Pair {
@@ -119,6 +122,7 @@ impl Pair {
             gap,
             approach,
             pushed: false,
+            project_start: 0.0,
         }
     }
 }
@@ -216,6 +220,9 @@ impl PairRow {
 struct RowBand {
     rows: Vec<PairRow>,
     impulses: Vec<f64>,
+    /// The impulses the predict stage ended with, one per pair of the band,
+    /// kept for the recording as the step ends.
+    predicted: Vec<f64>,
 }
 
 /// The Gauss-Seidel update of every normal contact: the impulse that drives
@@ -518,11 +525,11 @@ impl Contacts {
     /// applies the starting impulses to the balls.
     fn start_rows<F>(&mut self, balls: &mut Balls, row: F)
     where
-        F: Fn(&Pair) -> Option<(f64, f64)> + Sync,
+        F: Fn(&mut Pair) -> Option<(f64, f64)> + Sync,
     {
         self.rows.resize_with(self.bands.len(), RowBand::default);
         let inv_mass = &balls.inv_mass;
-        let build = |(band, rows): (&Vec<Pair>, &mut RowBand)| {
+        let build = |(band, rows): (&mut Vec<Pair>, &mut RowBand)| {
             rows.rows.clear();
             rows.impulses.clear();
             for p in band {
@@ -533,9 +540,12 @@ impl Contacts {
             }
         };
         if self.pair_count() >= PARALLEL_PAIRS {
-            self.bands.par_iter().zip(&mut self.rows).for_each(build);
+            self.bands
+                .par_iter_mut()
+                .zip(&mut self.rows)
+                .for_each(build);
         } else {
-            self.bands.iter().zip(&mut self.rows).for_each(build);
+            self.bands.iter_mut().zip(&mut self.rows).for_each(build);
         }
         let start = |band: &mut RowBand, velocity: &mut [DVec3], first: usize| {
             for (r, &impulse) in band.rows.iter().zip(&band.impulses) {
@@ -559,33 +569,41 @@ impl Contacts {
         sweep_bands(&mut self.rows, &self.layers, &mut balls.velocity, &solve);
     }
 
-    /// Records the impulse of each pair's row for the next step's warm
-    /// start in `record` (begun for this step's slots, with each slot's
-    /// ball number), 0 for the pairs without a row; `chosen` tells them as
-    /// in [`Contacts::start_rows`]. With `keep`, hands each pair its
-    /// impulse too: `keep(pair, impulse)`.
-    fn keep_row_impulses<F, G>(
-        &mut self,
-        chosen: F,
-        keep: Option<G>,
-        record: (&mut WarmStart, &[u32]),
-    ) where
-        F: Fn(&Pair) -> bool + Sync,
+    /// Hands each pair its row's impulse, `keep(pair, impulse)`, and keeps
+    /// the impulses for [`Contacts::record_row_impulses`]: every pair has a
+    /// row in the predict stage.
+    fn keep_predicted_impulses<G>(&mut self, keep: G)
+    where
         G: Fn(&mut Pair, f64) + Sync,
     {
+        let hand = |(band, rows): (&mut Vec<Pair>, &mut RowBand)| {
+            debug_assert_eq!(band.len(), rows.impulses.len(), "a pair without a row");
+            for (p, &impulse) in band.iter_mut().zip(&rows.impulses) {
+                keep(p, impulse);
+            }
+            std::mem::swap(&mut rows.predicted, &mut rows.impulses);
+        };
+        if self.pair_count() >= PARALLEL_PAIRS {
+            self.bands.par_iter_mut().zip(&mut self.rows).for_each(hand);
+        } else {
+            self.bands.iter_mut().zip(&mut self.rows).for_each(hand);
+        }
+    }
+
+    /// Records each pair's impulses of both stages for the next step's
+    /// warm start in `record` (begun for this step's slots, with each
+    /// slot's ball number): the predict stage's kept by
+    /// [`Contacts::keep_predicted_impulses`], and the project stage's from
+    /// the rows, which only the pairs that pushed have.
+    fn record_row_impulses(&mut self, record: (&mut WarmStart, &[u32])) {
         let (warm, ids) = record;
         let rows = &self.rows;
         let hand = |z: usize, band: &mut Vec<Pair>, part: &mut WarmPart| {
-            let row_impulses = &rows[z].impulses;
-            if let Some(keep) = &keep {
-                let mut rows = row_impulses.iter();
-                for p in band.iter_mut() {
-                    keep(p, next_impulse(chosen(p), &mut rows));
-                }
-            }
-            let mut rows = row_impulses.iter();
-            let chosen = &chosen;
-            let impulses = band.iter().map(move |p| next_impulse(chosen(p), &mut rows));
+            let mut project = rows[z].impulses.iter();
+            let impulses = band
+                .iter()
+                .zip(&rows[z].predicted)
+                .map(move |(p, &predicted)| [predicted, next_impulse(p.pushed, &mut project)]);
             part.record_pairs(band, impulses, ids);
         };
         let parallel = self.pair_count() >= PARALLEL_PAIRS;
@@ -1085,8 +1103,7 @@ impl Crowd {
 ///
 /// With `warm` (last step's impulses and each slot's ball number) pairs and
 /// ball-wall contacts start from the impulse that held them last step; the
-/// impulses they end with are kept in `record` (see
-/// [`Contacts::keep_row_impulses`]).
+/// impulses they end with are kept for [`solve_project`] to record.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_predict(
     bodies: &mut Bodies,
@@ -1096,7 +1113,6 @@ pub(crate) fn solve_predict(
     dt: f64,
     bounce_threshold: f64,
     warm: Option<(&WarmStart, &[u32])>,
-    record: (&mut WarmStart, &[u32]),
 ) {
     // Every ball within reach counts against a bounce, touching or not: a
     // ball sent back by a tumbler may meet a neighbour it was leaving, and
@@ -1133,10 +1149,13 @@ pub(crate) fn solve_predict(
         c.bounce =
             c.approach < -bounce_threshold && c.gap + c.approach * dt <= 0.0 && crowd.lone(c);
     }
-    // Pairs never bounce here, so all start warm.
+    // Pairs never bounce here, so all start warm. One lookup finds the
+    // project stage's start too.
     contacts.start_rows(bodies.balls, |p| {
         let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
-        Some((target, warm_pair(warm, p)))
+        let held = warm_pair(warm, p);
+        p.project_start = held[Stage::Project as usize];
+        Some((target, share(warm, held[Stage::Predict as usize])))
     });
     if let Some((warm, ids)) = warm {
         warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Predict);
@@ -1161,18 +1180,13 @@ pub(crate) fn solve_predict(
     // against a fast approach: only those may bounce.
     let fast = |pushed: f64, approach: f64| pushed > 0.0 && approach < -bounce_threshold;
     let crowd = &*crowd;
-    let (warm_next, ids) = record;
-    contacts.keep_row_impulses(
-        |_| true,
-        Some(|p: &mut Pair, impulse: f64| {
-            p.pushed = impulse > 0.0;
-            if fast(impulse, p.approach) {
-                crowd.will_ask(p.i);
-                crowd.will_ask(p.j);
-            }
-        }),
-        (&mut *warm_next, ids),
-    );
+    contacts.keep_predicted_impulses(|p: &mut Pair, impulse: f64| {
+        p.pushed = impulse > 0.0;
+        if fast(impulse, p.approach) {
+            crowd.will_ask(p.i);
+            crowd.will_ask(p.j);
+        }
+    });
     for c in contacts.others.iter_mut() {
         c.pushed = c.impulse;
     }
@@ -1181,7 +1195,6 @@ pub(crate) fn solve_predict(
         if fast(c.pushed, c.approach) {
             crowd.will_ask(c.ball);
         }
-        warm_next.record_wall(c.ball as usize, c.surface, c.pushed);
     }
 }
 
@@ -1200,11 +1213,16 @@ impl Stage {
     }
 }
 
-/// Last step's impulse of pair `p`, if there is a warm start.
-fn warm_pair(warm: Option<(&WarmStart, &[u32])>, p: &Pair) -> f64 {
-    warm.map_or(0.0, |(warm, ids)| {
+/// Last step's impulses of pair `p` as kept, if there is a warm start.
+fn warm_pair(warm: Option<(&WarmStart, &[u32])>, p: &Pair) -> Held {
+    warm.map_or(Held::default(), |(warm, ids)| {
         warm.pair(ids[p.i as usize], ids[p.j as usize])
     })
+}
+
+/// The impulse to start from, given one kept (0 without a warm start).
+fn share(warm: Option<(&WarmStart, &[u32])>, impulse: f32) -> f64 {
+    warm.map_or(0.0, |(warm, _)| warm.share(impulse))
 }
 
 /// Starts ball-wall contacts from last step's impulses.
@@ -1220,7 +1238,7 @@ fn warm_start_walls(
             continue;
         }
         let i = c.ball as usize;
-        let impulse = warm.wall(ids[i], c.surface);
+        let impulse = warm.share(warm.wall(ids[i], c.surface)[stage as usize]);
         if impulse > 0.0 {
             c.impulse = impulse;
             balls.velocity[i] += c.normal() * (impulse * balls.inv_mass[i]);
@@ -1236,7 +1254,8 @@ fn warm_start_walls(
 /// rest. A ball that bounced off a wall while moving has spent its approach
 /// already: `hit_wall` marks those, and their contacts only stop.
 ///
-/// Warm started from `warm` and recorded into `record` as the predict stage.
+/// Warm started from `warm` as the predict stage. The impulses of both
+/// stages are recorded into `record` for the next step's warm start.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_project(
     bodies: &mut Bodies,
@@ -1285,7 +1304,7 @@ pub(crate) fn solve_project(
             if bounce {
                 (-ball_restitution * p.approach, 0.0)
             } else {
-                (0.0, warm_pair(warm, p))
+                (0.0, share(warm, p.project_start))
             }
         })
     });
@@ -1313,13 +1332,23 @@ pub(crate) fn solve_project(
         });
     }
     let (warm_next, ids) = record;
-    contacts.keep_row_impulses(
-        |p| p.pushed,
-        None::<fn(&mut Pair, f64)>,
-        (&mut *warm_next, ids),
-    );
+    contacts.record_row_impulses((&mut *warm_next, ids));
     contacts.keep_wall_impulses(|c| c.pushed > 0.0);
     for c in &contacts.walls {
-        warm_next.record_wall(c.ball as usize, c.surface, c.impulse);
+        warm_next.record_wall(c.ball as usize, c.surface, [c.pushed, c.impulse]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_contacts_that_crowd_a_room_stay_small() {
+        // A pair is streamed from memory several times a step: the project
+        // stage's warm start lives in what would be its padding.
+        assert_eq!(std::mem::size_of::<Pair>(), 56);
+        assert_eq!(std::mem::size_of::<PairRow>(), 48);
+        assert_eq!(std::mem::size_of::<WallContact>(), 40);
     }
 }

@@ -1,5 +1,7 @@
 //! Warm starting: the normal impulses that held contacts last step, kept by
-//! ball number, so that this step's solver starts from them.
+//! ball number, so that this step's solver starts from them. Both solver
+//! stages' impulses of a contact are kept together: one lookup finds both,
+//! and one recording, as the step ends, keeps both.
 //!
 //! A pile's weight has to reach the floor through every layer of balls.
 //! Gauss-Seidel carries it down one layer or so per iteration, so a solver
@@ -13,9 +15,12 @@
 //! step's motion.
 
 use crate::contact::Pair;
+#[cfg(doc)]
+use crate::contact::Stage;
 use crate::room::Surface;
 
-/// Last step's normal impulses of ball pairs and ball-wall contacts.
+/// Last step's normal impulses of ball pairs and ball-wall contacts, of
+/// both solver stages.
 ///
 /// They are kept in last step's slot order (see [`crate::broadphase::Grid::order`]),
 /// which is the order of space and changes little from one step to the next,
@@ -57,17 +62,33 @@ impl Kept {
     }
 }
 
+/// A contact's impulses in each solver stage, indexed by [`Stage`], as kept:
+/// single precision is plenty for a starting guess, and half the bytes.
+pub(crate) type Held = [f32; 2];
+
+/// A contact's impulses in each solver stage, indexed by [`Stage`].
+pub(crate) type StageImpulses = [f64; 2];
+
+/// Whether a contact pushed in either stage, and so is worth keeping.
+fn pushed(impulses: StageImpulses) -> bool {
+    impulses.iter().any(|&f| f > 0.0)
+}
+
+fn held(impulses: StageImpulses) -> Held {
+    impulses.map(|f| f as f32)
+}
+
 /// A ball of a later slot that a slot's ball pushed (by number), and how hard.
 #[derive(Clone, Copy, Debug, Default)]
 struct Partner {
     ball: u32,
-    impulse: f32,
+    impulses: Held,
 }
 
 #[derive(Clone, Copy, Debug)]
 struct WallImpulse {
     surface: Surface,
-    impulse: f32,
+    impulses: Held,
 }
 
 /// Which slot keeps the impulse between the balls in slots `i` and `j`
@@ -106,10 +127,10 @@ impl WarmStart {
         }
     }
 
-    /// Records the impulse between the ball in slot `i` and surface `s`;
+    /// Records the impulses between the ball in slot `i` and surface `s`;
     /// called in slot order.
-    pub fn record_wall(&mut self, i: usize, s: Surface, impulse: f64) {
-        if impulse <= 0.0 {
+    pub fn record_wall(&mut self, i: usize, s: Surface, impulses: StageImpulses) {
+        if !pushed(impulses) {
             return;
         }
         let kept = &mut self.kept[i];
@@ -124,7 +145,7 @@ impl WarmStart {
         kept.walls += 1;
         self.walls.push(WallImpulse {
             surface: s,
-            impulse: impulse as f32,
+            impulses: held(impulses),
         });
     }
 
@@ -141,28 +162,33 @@ impl WarmStart {
         }
     }
 
-    /// Last step's impulse between balls number `a` and `b` (0 if none).
-    pub fn pair(&self, a: u32, b: u32) -> f64 {
+    /// Last step's impulses between balls number `a` and `b` (0 if none),
+    /// as kept: [`WarmStart::share`] tells what of each to start from.
+    pub fn pair(&self, a: u32, b: u32) -> Held {
         let (Some(sa), Some(sb)) = (self.slot(a), self.slot(b)) else {
-            return 0.0;
+            return Held::default();
         };
         let (owner, partner) = if sa < sb { (sa, b) } else { (sb, a) };
         let mut kept = self.partners[self.kept[owner].partner_range()].iter();
-        self.share(kept.find(|p| p.ball == partner).map(|p| p.impulse))
+        kept.find(|p| p.ball == partner)
+            .map_or(Held::default(), |p| p.impulses)
     }
 
-    /// Last step's impulse between ball number `ball` and surface `s`.
-    pub fn wall(&self, ball: u32, s: Surface) -> f64 {
+    /// Last step's impulses between ball number `ball` and surface `s`, as
+    /// kept (see [`WarmStart::pair`]).
+    pub fn wall(&self, ball: u32, s: Surface) -> Held {
         let Some(slot) = self.slot(ball) else {
-            return 0.0;
+            return Held::default();
         };
         let mut kept = self.walls[self.kept[slot].wall_range()].iter();
-        self.share(kept.find(|w| w.surface == s).map(|w| w.impulse))
+        kept.find(|w| w.surface == s)
+            .map_or(Held::default(), |w| w.impulses)
     }
 
-    /// The share of a kept impulse that a lookup gives, 0 for none.
-    fn share(&self, impulse: Option<f32>) -> f64 {
-        impulse.map_or(0.0, |impulse| self.strength * impulse as f64)
+    /// The impulse to start from, given one kept: its share (see
+    /// [`WarmStart::weaken`]).
+    pub fn share(&self, impulse: f32) -> f64 {
+        self.strength * impulse as f64
     }
 }
 
@@ -204,16 +230,20 @@ impl<'a> WarmPart<'a> {
     }
 
     /// Records the pairs of `band` (slots of this part, `ids` each slot's
-    /// ball number) that pushed, `impulses` giving each pair's impulse in
+    /// ball number) that pushed, `impulses` giving each pair's impulses in
     /// turn, into room for the band's pairs.
     pub fn record_pairs<I>(&mut self, band: &[Pair], impulses: I, ids: &[u32])
     where
-        I: Iterator<Item = f64> + Clone,
+        I: Iterator<Item = StageImpulses> + Clone,
     {
         let first = self.first_slot;
         let owner = |p: &Pair| pair_owner(p.i as usize, p.j as usize, ids);
-        let pushed = || band.iter().zip(impulses.clone()).filter(|(_, f)| *f > 0.0);
-        for (p, _) in pushed() {
+        let kept_pairs = || {
+            band.iter()
+                .zip(impulses.clone())
+                .filter(|(_, f)| pushed(*f))
+        };
+        for (p, _) in kept_pairs() {
             self.kept[owner(p).0 - first].pairs += 1;
         }
         // Each slot's room follows the last one's, then fills from its start.
@@ -223,12 +253,12 @@ impl<'a> WarmPart<'a> {
             next += kept.pairs;
             kept.pairs = 0;
         }
-        for (p, impulse) in pushed() {
+        for (p, impulses) in kept_pairs() {
             let (slot, partner) = owner(p);
             let kept = &mut self.kept[slot - first];
             self.partners[(kept.first + kept.pairs) as usize - self.first_pair] = Partner {
                 ball: partner,
-                impulse: impulse as f32,
+                impulses: held(impulses),
             };
             kept.pairs += 1;
         }
@@ -248,9 +278,25 @@ mod tests {
             .collect()
     }
 
+    /// The impulses a test records for a contact: `f` in the predict stage,
+    /// `2 f` in the project stage.
+    fn both(f: f64) -> StageImpulses {
+        [f, 2.0 * f]
+    }
+
     impl WarmStart {
+        /// What a lookup of the pair of balls `a` and `b` starts each stage from.
+        fn pair_start(&self, a: u32, b: u32) -> StageImpulses {
+            self.pair(a, b).map(|f| self.share(f))
+        }
+
+        /// What a lookup of ball `ball` on surface `s` starts each stage from.
+        fn wall_start(&self, ball: u32, s: Surface) -> StageImpulses {
+            self.wall(ball, s).map(|f| self.share(f))
+        }
+
         /// Records one band of pairs `(i, j, impulse)` by slot, whose slot `k`
-        /// holds ball number `ids[k]`, out of `balls` numbers.
+        /// holds ball number `ids[k]`, out of `balls` numbers (see [`both`]).
         fn record(&mut self, ids: &[u32], balls: usize, pairs: &[(usize, usize, f64)]) {
             let mut slot_of = vec![WarmStart::NONE; balls];
             for (slot, &id) in ids.iter().enumerate() {
@@ -258,7 +304,7 @@ mod tests {
             }
             self.begin(&slot_of, ids.len(), pairs.len());
             let band = to_pairs(pairs);
-            let impulses = pairs.iter().map(|p| p.2);
+            let impulses = pairs.iter().map(|p| both(p.2));
             self.recorder().record_pairs(&band, impulses, ids);
         }
     }
@@ -269,26 +315,26 @@ mod tests {
         // Slots 0..4 hold balls 3, 1, 0, 2; ball 4 is gone.
         let ids = [3, 1, 0, 2];
         w.record(&ids, 5, &[(0, 1, 2.5), (3, 2, 1.5), (1, 2, 0.0)]);
-        w.record_wall(1, Surface::Back, 0.5);
-        w.record_wall(3, Surface::Floor, 4.0);
-        w.record_wall(3, Surface::Left, 3.0);
-        assert_eq!(w.pair(3, 1), 2.5);
-        assert_eq!(w.pair(1, 3), 2.5);
-        assert_eq!(w.pair(0, 2), 1.5);
-        assert_eq!(w.pair(1, 0), 0.0);
-        assert_eq!(w.pair(4, 0), 0.0);
-        assert_eq!(w.wall(1, Surface::Back), 0.5);
-        assert_eq!(w.wall(2, Surface::Floor), 4.0);
-        assert_eq!(w.wall(2, Surface::Left), 3.0);
-        assert_eq!(w.wall(2, Surface::Ceiling), 0.0);
-        assert_eq!(w.wall(3, Surface::Floor), 0.0);
-        assert_eq!(w.wall(4, Surface::Floor), 0.0);
+        w.record_wall(1, Surface::Back, both(0.5));
+        w.record_wall(3, Surface::Floor, both(4.0));
+        w.record_wall(3, Surface::Left, both(3.0));
+        assert_eq!(w.pair_start(3, 1), both(2.5));
+        assert_eq!(w.pair_start(1, 3), both(2.5));
+        assert_eq!(w.pair_start(0, 2), both(1.5));
+        assert_eq!(w.pair_start(1, 0), both(0.0));
+        assert_eq!(w.pair_start(4, 0), both(0.0));
+        assert_eq!(w.wall_start(1, Surface::Back), both(0.5));
+        assert_eq!(w.wall_start(2, Surface::Floor), both(4.0));
+        assert_eq!(w.wall_start(2, Surface::Left), both(3.0));
+        assert_eq!(w.wall_start(2, Surface::Ceiling), both(0.0));
+        assert_eq!(w.wall_start(3, Surface::Floor), both(0.0));
+        assert_eq!(w.wall_start(4, Surface::Floor), both(0.0));
         w.weaken(0.5);
-        assert_eq!(w.pair(3, 1), 1.25);
-        assert_eq!(w.wall(2, Surface::Floor), 2.0);
+        assert_eq!(w.pair_start(3, 1), both(1.25));
+        assert_eq!(w.wall_start(2, Surface::Floor), both(2.0));
         w.record(&ids, 5, &[]);
-        assert_eq!(w.pair(3, 1), 0.0);
-        assert_eq!(w.wall(2, Surface::Floor), 0.0);
+        assert_eq!(w.pair_start(3, 1), both(0.0));
+        assert_eq!(w.wall_start(2, Surface::Floor), both(0.0));
     }
 
     #[test]
@@ -300,12 +346,28 @@ mod tests {
         pairs[6].2 = 0.0;
         pairs.insert(3, (3, 2, 0.25));
         w.record(&ids, 20, &pairs);
-        assert_eq!(w.pair(0, 1), 1.0);
-        assert_eq!(w.pair(0, 19), 19.0);
-        assert_eq!(w.pair(19, 0), 19.0);
-        assert_eq!(w.pair(0, 7), 0.0);
-        assert_eq!(w.pair(2, 3), 0.25);
-        assert_eq!(w.pair(1, 2), 0.0);
+        assert_eq!(w.pair_start(0, 1), both(1.0));
+        assert_eq!(w.pair_start(0, 19), both(19.0));
+        assert_eq!(w.pair_start(19, 0), both(19.0));
+        assert_eq!(w.pair_start(0, 7), both(0.0));
+        assert_eq!(w.pair_start(2, 3), both(0.25));
+        assert_eq!(w.pair_start(1, 2), both(0.0));
+    }
+
+    #[test]
+    fn a_contact_that_pushed_in_either_stage_keeps_both_impulses() {
+        let mut w = WarmStart::default();
+        let ids = [0, 1, 2];
+        w.begin(&ids, 3, 2);
+        let band = to_pairs(&[(0, 1, 0.0), (1, 2, 0.0)]);
+        let impulses = [[1.5, 0.0], [0.0, 0.0]];
+        w.recorder().record_pairs(&band, impulses.into_iter(), &ids);
+        w.record_wall(0, Surface::Floor, [0.0, 0.75]);
+        w.record_wall(2, Surface::Floor, [0.0, 0.0]);
+        assert_eq!(w.pair_start(0, 1), [1.5, 0.0]);
+        assert_eq!(w.pair_start(1, 2), [0.0, 0.0]);
+        assert_eq!(w.wall_start(0, Surface::Floor), [0.0, 0.75]);
+        assert_eq!(w.wall_start(2, Surface::Floor), [0.0, 0.0]);
     }
 
     #[test]
@@ -324,7 +386,8 @@ mod tests {
         let mut split = WarmStart::default();
         let slot_of: Vec<u32> = (0..6).rev().collect();
         split.begin(&slot_of, 6, all.len());
-        let impulses = |band: &[(usize, usize, f64)]| band.iter().map(|p| p.2).collect::<Vec<_>>();
+        let impulses =
+            |band: &[(usize, usize, f64)]| band.iter().map(|p| both(p.2)).collect::<Vec<_>>();
         let (mut first, mut second) = split.recorder().split(2, bands[0].len());
         let later = impulses(&bands[1]);
         second.record_pairs(&to_pairs(&bands[1]), later.into_iter(), &ids);
@@ -335,7 +398,7 @@ mod tests {
                 assert_eq!(split.pair(a, b), whole.pair(a, b), "balls {a} and {b}");
             }
         }
-        assert_eq!(split.pair(ids[1], ids[3]), 2.0);
-        assert_eq!(split.pair(ids[3], ids[2]), 5.0);
+        assert_eq!(split.pair_start(ids[1], ids[3]), both(2.0));
+        assert_eq!(split.pair_start(ids[3], ids[2]), both(5.0));
     }
 }

@@ -17,8 +17,8 @@ use crate::broadphase::Grid;
 use crate::ccd::first_impact;
 use crate::config::{Rgb, WorldConfig};
 use crate::contact::{
-    Bodies, BodyRef, Contact, Contacts, Crowd, PARALLEL_PAIRS, Pair, Stage, WallContact,
-    solve_predict, solve_project,
+    Bodies, BodyRef, Contact, Contacts, Crowd, PARALLEL_PAIRS, Pair, WallContact, solve_predict,
+    solve_project,
 };
 use crate::events::{Event, EventKind};
 use crate::fireball::Fireball;
@@ -129,10 +129,10 @@ struct SolverParts<'a> {
     contacts: &'a mut Contacts,
     crowd: &'a mut Crowd,
     hit_wall: &'a [bool],
-    /// Last step's impulses of the stage, and each slot's ball number.
+    /// Last step's impulses, and each slot's ball number.
     warm: Option<(&'a WarmStart, &'a [u32])>,
-    /// Where this step's impulses of each stage are recorded.
-    record: &'a mut [WarmStart; 2],
+    /// Where this step's impulses are recorded.
+    record: &'a mut WarmStart,
     /// Each slot's ball number.
     ids: &'a [u32],
 }
@@ -181,10 +181,11 @@ pub struct World {
     /// Per grid layer: the contacts of its balls with the walls.
     wall_contacts_by_layer: Vec<Vec<WallContact>>,
     crowd: Crowd,
-    /// Last step's impulses of each solver stage, by ball number (see [`crate::warm`]),
-    /// and this step's, which take their place once the step is done.
-    warm: [WarmStart; 2],
-    warm_next: [WarmStart; 2],
+    /// Last step's impulses of both solver stages, by ball number (see
+    /// [`crate::warm`]), and this step's, which take their place once the
+    /// step is done.
+    warm: WarmStart,
+    warm_next: WarmStart,
     /// The state before a step, to retake it if its warm start made energy.
     before_step: (Balls, Vec<Tumbler>),
     retakes: u64,
@@ -336,7 +337,7 @@ impl World {
     /// from the world's random sequence, every ball alive and white again.
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
         // New balls under old numbers: last step's impulses mean nothing now.
-        for w in self.warm.iter_mut().chain(&mut self.warm_next) {
+        for w in [&mut self.warm, &mut self.warm_next] {
             w.begin(&[], 0, 0);
         }
         self.spawn_balls()
@@ -561,7 +562,7 @@ impl World {
                 self.balls.clone_from(&self.before_step.0);
                 self.tumblers.clone_from(&self.before_step.1);
                 self.events.truncate(first_event);
-                self.warm.iter_mut().for_each(|w| w.weaken(share));
+                self.warm.weaken(share);
                 self.retakes += 1;
                 self.advance(dt, share > 0.0, Some(before));
             }
@@ -658,9 +659,7 @@ impl World {
             self.config.solver.iterations,
             self.config.solver.bounce_threshold,
         );
-        self.begin_recording(Stage::Predict);
-        let mut parts = self.solver_parts(warm_start.then_some(Stage::Predict));
-        let record = &mut parts.record[Stage::Predict as usize];
+        let mut parts = self.solver_parts(warm_start);
         solve_predict(
             &mut parts.bodies,
             parts.contacts,
@@ -669,7 +668,6 @@ impl World {
             dt,
             threshold,
             parts.warm,
-            (record, parts.ids),
         );
         self.apply_rolling_resistance();
 
@@ -678,9 +676,8 @@ impl World {
 
         self.update_contact_inertia();
         let restitution = self.config.balls.restitution;
-        self.begin_recording(Stage::Project);
-        let mut parts = self.solver_parts(warm_start.then_some(Stage::Project));
-        let record = &mut parts.record[Stage::Project as usize];
+        self.begin_recording();
+        let mut parts = self.solver_parts(warm_start);
         solve_project(
             &mut parts.bodies,
             parts.contacts,
@@ -690,7 +687,7 @@ impl World {
             restitution,
             parts.hit_wall,
             parts.warm,
-            (record, parts.ids),
+            (parts.record, parts.ids),
         );
         self.report_contacts();
         // Pushing sunk balls apart lifts them: it may spend what the step
@@ -758,17 +755,17 @@ impl World {
         }
     }
 
-    /// Forgets what the next step's warm start of `stage` held, ready to
-    /// record this step's impulses in this step's slots.
-    fn begin_recording(&mut self, stage: Stage) {
+    /// Forgets what the next step's warm start held, ready to record this
+    /// step's impulses in this step's slots.
+    fn begin_recording(&mut self) {
         let (slot_of, slots) = (self.grid.ball_slots(), self.grid.order().len());
         let pairs = self.contacts.pair_count();
-        self.warm_next[stage as usize].begin(slot_of, slots, pairs);
+        self.warm_next.begin(slot_of, slots, pairs);
     }
 
-    /// What the solver works on, borrowed apart, with the warm start of
-    /// `stage` if there is one, and where to record the next step's.
-    fn solver_parts(&mut self, stage: Option<Stage>) -> SolverParts<'_> {
+    /// What the solver works on, borrowed apart, with last step's impulses
+    /// if the step is warm started, and where to record this step's.
+    fn solver_parts(&mut self, warm_start: bool) -> SolverParts<'_> {
         let bodies = Bodies {
             balls: &mut self.balls,
             tumblers: &mut self.tumblers,
@@ -783,7 +780,7 @@ impl World {
             contacts: &mut self.contacts,
             crowd: &mut self.crowd,
             hit_wall: &self.hit_wall,
-            warm: stage.map(|s| (&self.warm[s as usize], self.grid.order())),
+            warm: warm_start.then(|| (&self.warm, self.grid.order())),
             record: &mut self.warm_next,
             ids: self.grid.order(),
         }
@@ -1011,7 +1008,7 @@ impl World {
         // (pairs and walls have theirs from when they were found).
         let SolverParts {
             bodies, contacts, ..
-        } = self.solver_parts(None);
+        } = self.solver_parts(false);
         for c in contacts.others.iter_mut() {
             c.approach = bodies.normal_velocity(c);
         }
