@@ -5,7 +5,8 @@
 //! `-- 10000 10s` the simulated time too (3 s unless told). Each pit is
 //! simulated for the same time by both engines from the same start; only
 //! `step` calls are timed. Quality is measured every half second (untimed)
-//! and at the end.
+//! and at the end. After the 10k and 100k pits it says whether the
+//! engine's targets for them were met.
 
 use rolypoly_bench::ours::OurPit;
 use rolypoly_bench::pit::{Pit, PitEngine};
@@ -62,6 +63,31 @@ fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
         if r.end.at_rest() { "yes" } else { "no" },
         100.0 * r.end.resting as f64 / balls as f64,
     );
+}
+
+/// The target this engine is held to for a pit of `balls`, and whether
+/// this run met it: at 10 000 balls ten times Rapier's steps per second
+/// with no deeper overlap and no escapes; at 100 000 balls 60 steps per
+/// second.
+fn target_for(balls: usize, ours: &Run, rapier: &Run, ratio: f64) -> Option<String> {
+    let verdict = |met: bool| if met { "met" } else { "NOT met" };
+    match balls {
+        10_000 => {
+            let met = ratio >= 10.0
+                && ours.worst.max_penetration <= rapier.worst.max_penetration
+                && ours.worst.escapes == 0;
+            Some(format!(
+                "target: at least 10x Rapier, no deeper overlap, no escapes: {}",
+                verdict(met)
+            ))
+        }
+        100_000 => Some(format!(
+            "target: at least 60 steps/s: {} ({:.1})",
+            verdict(ours.steps_per_second >= 60.0),
+            ours.steps_per_second
+        )),
+        _ => None,
+    }
 }
 
 /// Step time of the default scene with the fireball flying (ours only).
@@ -157,6 +183,9 @@ fn main() {
             "{:>7} rolypoly steps retaken with less warm start: {retaken}",
             ""
         );
+        if let Some(target) = target_for(n, &our_run, &rapier_run, ratio) {
+            println!("{:>7} {target}", "");
+        }
     }
     match default_scene_with_fireball() {
         Ok(t) => println!(
