@@ -1,4 +1,5 @@
-// The lit scene, the light's bulb, and the depth-only shadow faces.
+// The lit scene, the balls (spheres traced on squares), the light's bulb, and
+// the depth-only shadow faces.
 //
 // Lighting is Blinn-Phong (ambient + diffuse + specular with the half
 // vector). The point light's shadows come from six depth faces (a cube
@@ -174,21 +175,135 @@ fn fs_lit(in: VertexOut) -> @location(0) vec4<f32> {
     } else if kind == KIND_PLAIN {
         base = plaster(base, in.world);
     }
+    return vec4<f32>(blinn_phong(base, in.world, normalize(in.normal), in.material), 1.0);
+}
 
-    let n = normalize(in.normal);
-    let to_light = globals.light_pos.xyz - in.world;
+// Ambient, and where the light reaches, diffuse and specular.
+fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f32>) -> vec3<f32> {
+    let to_light = globals.light_pos.xyz - world;
     let distance = length(to_light);
     let l = to_light / distance;
-    let v = normalize(globals.camera_pos.xyz - in.world);
+    let v = normalize(globals.camera_pos.xyz - world);
     let h = normalize(l + v);
     let attenuation = 1.0 / (1.0 + 0.05 * distance + 0.04 * distance * distance);
     let light = globals.light_color.rgb * attenuation;
 
     let ambient = globals.light_color.w * base;
     let diffuse = base * max(dot(n, l), 0.0) * light;
-    let specular = in.material.y * pow(max(dot(n, h), 0.0), in.material.z) * light * step(0.0, dot(n, l));
-    let visible = light_visibility(in.world, n);
-    return vec4<f32>(ambient + visible * (diffuse + specular), 1.0);
+    let specular = material.y * pow(max(dot(n, h), 0.0), material.z) * light * step(0.0, dot(n, l));
+    let visible = light_visibility(world, n);
+    return ambient + visible * (diffuse + specular);
+}
+
+// --- balls: spheres traced on a square ---------------------------------------
+//
+// A ball is not a mesh: it is a square that faces the eye, just large enough
+// to cover the sphere, and each fragment traces its ray to the exact sphere
+// and writes the depth of the point it hits. Two triangles per ball instead
+// of hundreds keep a pit of 100 000 balls cheap, and the outline is a true
+// circle at any distance. The shadow faces draw the balls the same way, with
+// the light as the eye.
+
+struct BallOut {
+    @builtin(position) clip: vec4<f32>,
+    // The point on the square; the ray runs from the eye through it.
+    @location(0) world: vec3<f32>,
+    // xyz: the centre; w: the radius.
+    @location(1) @interpolate(flat) sphere: vec4<f32>,
+    @location(2) @interpolate(flat) color: vec4<f32>,
+    @location(3) @interpolate(flat) material: vec4<f32>,
+};
+
+// Corner `corner` (each coordinate -1 or 1) of the square through the
+// sphere's centre, square to the line of sight from `eye`, that covers the
+// sphere's outline: the cone of rays grazing it meets that plane in a circle
+// of radius r d / sqrt(d^2 - r^2). An eye inside the sphere sees no outline;
+// the square collapses and the ball is not drawn, as a mesh seen from inside
+// is culled.
+fn ball_square_corner(sphere: vec4<f32>, eye: vec3<f32>, corner: vec2<f32>) -> vec3<f32> {
+    let centre = sphere.xyz;
+    let radius = sphere.w;
+    let to_centre = centre - eye;
+    let d2 = dot(to_centre, to_centre);
+    if d2 <= radius * radius {
+        return centre;
+    }
+    let axis = to_centre * inverseSqrt(d2);
+    let half = radius * sqrt(d2 / (d2 - radius * radius));
+    let helper = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), abs(axis.y) > 0.9);
+    let side = normalize(cross(axis, helper));
+    let up = cross(side, axis);
+    return centre + (side * corner.x + up * corner.y) * half;
+}
+
+fn ball_sphere(i: InstanceIn) -> vec4<f32> {
+    // Balls are placed with a uniform scale: the radius.
+    return vec4<f32>(i.m3.xyz, length(i.m0.xyz));
+}
+
+// Where the ray from `eye` through `through` meets the sphere, and how far
+// (in radii) it passes from the centre: above 1 it misses, and the point is
+// then the nearest on the outline.
+struct BallHit {
+    point: vec3<f32>,
+    miss: f32,
+};
+
+fn trace_ball(sphere: vec4<f32>, eye: vec3<f32>, through: vec3<f32>) -> BallHit {
+    let dir = normalize(through - eye);
+    let from_centre = eye - sphere.xyz;
+    let along = dot(from_centre, dir);
+    // The ray's nearest approach to the centre, taken as a vector: squaring
+    // distances of metres to compare with the radius would lose it to rounding.
+    let across = from_centre - along * dir;
+    let r2 = sphere.w * sphere.w;
+    let a2 = dot(across, across);
+    let t = -along - sqrt(max(r2 - a2, 0.0));
+    return BallHit(eye + t * dir, sqrt(a2) / sphere.w);
+}
+
+fn depth_of(view_proj: mat4x4<f32>, point: vec3<f32>) -> f32 {
+    let clip = view_proj * vec4<f32>(point, 1.0);
+    return clip.z / clip.w;
+}
+
+@vertex
+fn vs_ball(v: VertexIn, i: InstanceIn) -> BallOut {
+    let sphere = ball_sphere(i);
+    let world = ball_square_corner(sphere, globals.camera_pos.xyz, v.position.xy * 2.0 - 1.0);
+    var out: BallOut;
+    out.clip = globals.view_proj * vec4<f32>(world, 1.0);
+    out.world = world;
+    out.sphere = sphere;
+    out.color = i.color;
+    out.material = i.material;
+    return out;
+}
+
+// With multisampling, a fragment on the outline covers the share of its
+// samples that the sphere covers (alpha to coverage), so the edge is smooth
+// like a mesh's; without, a pixel is the ball's if its centre is.
+override ALPHA_TO_COVERAGE: bool = true;
+
+struct BallFragment {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+};
+
+@fragment
+fn fs_ball(in: BallOut) -> BallFragment {
+    let hit = trace_ball(in.sphere, globals.camera_pos.xyz, in.world);
+    // How far inside the outline, in pixels, from how fast `miss` changes.
+    let inside = (1.0 - hit.miss) / max(fwidth(hit.miss), 1e-6);
+    let coverage = clamp(inside + 0.5, 0.0, 1.0);
+    if coverage <= 0.0 || (!ALPHA_TO_COVERAGE && coverage < 0.5) {
+        discard;
+    }
+    let n = normalize(hit.point - in.sphere.xyz);
+    var out: BallFragment;
+    out.color = vec4<f32>(blinn_phong(in.color.rgb, hit.point, n, in.material), coverage);
+    out.depth = depth_of(globals.view_proj, hit.point);
+    return out;
 }
 
 // Unlit and glowing: the light's bulb (and, with it, anything emissive).
@@ -224,6 +339,8 @@ fn fs_glow(in: VertexOut) -> @location(0) vec4<f32> {
 
 struct ShadowFace {
     view_proj: mat4x4<f32>,
+    // xyz: the light, which the face looks out from; w: unused.
+    light_pos: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> shadow_face_uniform: ShadowFace;
@@ -231,4 +348,35 @@ struct ShadowFace {
 @vertex
 fn vs_shadow(v: VertexIn, i: InstanceIn) -> @builtin(position) vec4<f32> {
     return shadow_face_uniform.view_proj * (model_of(i) * vec4<f32>(v.position, 1.0));
+}
+
+struct BallShadowOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) @interpolate(flat) sphere: vec4<f32>,
+};
+
+@vertex
+fn vs_ball_shadow(v: VertexIn, i: InstanceIn) -> BallShadowOut {
+    let sphere = ball_sphere(i);
+    let world = ball_square_corner(sphere, shadow_face_uniform.light_pos.xyz, v.position.xy * 2.0 - 1.0);
+    var out: BallShadowOut;
+    out.clip = shadow_face_uniform.view_proj * vec4<f32>(world, 1.0);
+    out.world = world;
+    out.sphere = sphere;
+    return out;
+}
+
+// The depth of the sphere seen from the light. A written depth takes none of
+// the pipeline's slope-scaled bias; the lit pass's lookup, pushed off the
+// surface along its normal (see `light_visibility`), keeps a ball from
+// shadowing itself all the same.
+@fragment
+fn fs_ball_shadow(in: BallShadowOut) -> @builtin(frag_depth) f32 {
+    let light = shadow_face_uniform.light_pos.xyz;
+    let hit = trace_ball(in.sphere, light, in.world);
+    if hit.miss > 1.0 {
+        discard;
+    }
+    return depth_of(shadow_face_uniform.view_proj, hit.point);
 }

@@ -142,9 +142,12 @@ pub struct Renderer {
     settings: RenderSettings,
     output_format: wgpu::TextureFormat,
     scene_pipeline: wgpu::RenderPipeline,
+    /// Balls, each a square that traces its sphere.
+    ball_pipeline: wgpu::RenderPipeline,
     emissive_pipeline: wgpu::RenderPipeline,
     glow_pipeline: wgpu::RenderPipeline,
     shadow_pipeline: wgpu::RenderPipeline,
+    ball_shadow_pipeline: wgpu::RenderPipeline,
     tonemap_pipeline: wgpu::RenderPipeline,
     tonemap_layout: wgpu::BindGroupLayout,
     cursor_pipeline: wgpu::RenderPipeline,
@@ -230,7 +233,7 @@ impl Renderer {
         });
         let face_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("shadow face"),
-            entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX)],
+            entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)],
         });
         let tonemap_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("tonemap"),
@@ -351,6 +354,49 @@ impl Renderer {
             })
         };
         let scene_pipeline = scene_pipeline_for("fs_lit", "lit", None);
+        // Balls are squares that trace their sphere (see scene.wgsl): seen
+        // from either side, and smooth at the outline through alpha to
+        // coverage where there are samples to cover.
+        let alpha_to_coverage = settings.msaa > 1;
+        let ball_constants = [("ALPHA_TO_COVERAGE", f64::from(u8::from(alpha_to_coverage)))];
+        let ball_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("balls"),
+            layout: Some(&scene_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_ball"),
+                compilation_options: Default::default(),
+                buffers: &buffers,
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: settings.msaa,
+                alpha_to_coverage_enabled: alpha_to_coverage,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_ball"),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &ball_constants,
+                    ..Default::default()
+                },
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: HDR_FORMAT,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
         let emissive_pipeline = scene_pipeline_for("fs_emissive", "emissive", None);
         // Premultiplied alpha: a fragment adds its light and covers a share
         // of what is behind; with no cover it is purely additive (the shells,
@@ -377,33 +423,44 @@ impl Renderer {
                 bind_group_layouts: &[Some(&face_layout)],
                 immediate_size: 0,
             });
-        let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("shadow"),
-            layout: Some(&shadow_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_shadow"),
-                compilation_options: Default::default(),
-                buffers: &buffers,
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: shadow::SHADOW_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                // Slope-scaled bias keeps surfaces from shadowing themselves (acne).
-                bias: wgpu::DepthBiasState {
-                    constant: 2,
-                    slope_scale: 2.0,
-                    clamp: 0.0,
+        // Slope-scaled bias keeps surfaces from shadowing themselves (acne).
+        let shadow_bias = wgpu::DepthBiasState {
+            constant: 2,
+            slope_scale: 2.0,
+            clamp: 0.0,
+        };
+        let shadow_pipeline_for = |vertex: &str, fragment: Option<&str>, label: &str| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&shadow_pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some(vertex),
+                    compilation_options: Default::default(),
+                    buffers: &buffers,
                 },
-            }),
-            multisample: Default::default(),
-            fragment: None,
-            multiview_mask: None,
-            cache: None,
-        });
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: shadow::SHADOW_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: shadow_bias,
+                }),
+                multisample: Default::default(),
+                fragment: fragment.map(|entry| wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets: &[],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let shadow_pipeline = shadow_pipeline_for("vs_shadow", None, "shadow");
+        let ball_shadow_pipeline =
+            shadow_pipeline_for("vs_ball_shadow", Some("fs_ball_shadow"), "ball shadow");
 
         let tonemap_pipeline = screen_pipeline(
             device,
@@ -450,9 +507,11 @@ impl Renderer {
             settings,
             output_format,
             scene_pipeline,
+            ball_pipeline,
             emissive_pipeline,
             glow_pipeline,
             shadow_pipeline,
+            ball_shadow_pipeline,
             tonemap_pipeline,
             tonemap_layout,
             cursor_pipeline,
@@ -516,7 +575,8 @@ impl Renderer {
         );
 
         let faces = shadow::face_view_projections(view.light.position);
-        self.shadow_cube.update(&gpu.queue, &faces);
+        self.shadow_cube
+            .update(&gpu.queue, &faces, view.light.position);
         let globals = Globals {
             view_proj: camera
                 .view_projection(width as f32 / height as f32)
@@ -558,11 +618,12 @@ impl Renderer {
                     occlusion_query_set: None,
                     multiview_mask: None,
                 });
-                pass.set_pipeline(&self.shadow_pipeline);
                 pass.set_bind_group(0, &self.shadow_cube.face_bind_groups[face], &[]);
                 pass.set_vertex_buffer(1, self.instance_buffer.slice(..));
                 // The room's walls cast no shadow inside it; balls and tumblers do.
-                draw_calls += draw(&mut pass, &self.sphere, ranges.balls.clone());
+                pass.set_pipeline(&self.ball_shadow_pipeline);
+                draw_calls += draw(&mut pass, &self.quad, ranges.balls.clone());
+                pass.set_pipeline(&self.shadow_pipeline);
                 draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
             }
         }
@@ -608,8 +669,9 @@ impl Renderer {
             // Lit and opaque first ...
             pass.set_pipeline(&self.scene_pipeline);
             draw_calls += draw(&mut pass, &self.quad, ranges.room.clone());
-            draw_calls += draw(&mut pass, &self.sphere, ranges.balls.clone());
             draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
+            pass.set_pipeline(&self.ball_pipeline);
+            draw_calls += draw(&mut pass, &self.quad, ranges.balls.clone());
             // ... then what glows and is not lit.
             pass.set_pipeline(&self.emissive_pipeline);
             draw_calls += draw(&mut pass, &self.sphere, ranges.bulb.clone());

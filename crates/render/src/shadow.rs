@@ -26,6 +26,24 @@ pub fn face_view_projections(light: Vec3) -> [Mat4; 6] {
     FACES.map(|(dir, up)| projection * glam::camera::rh::view::look_at_mat4(light, light + dir, up))
 }
 
+/// What a face is drawn with: its view-projection, and the light it looks
+/// out from (balls face it; see `vs_ball_shadow` in the shader).
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct FaceUniform {
+    view_proj: [f32; 16],
+    light_pos: [f32; 4],
+}
+
+impl FaceUniform {
+    fn new(view_proj: Mat4, light: Vec3) -> FaceUniform {
+        FaceUniform {
+            view_proj: view_proj.to_cols_array(),
+            light_pos: light.extend(1.0).to_array(),
+        }
+    }
+}
+
 pub struct ShadowCube {
     pub size: u32,
     /// All six layers, for sampling.
@@ -75,8 +93,8 @@ impl ShadowCube {
         let face_buffers: Vec<wgpu::Buffer> = (0..6)
             .map(|_| {
                 device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("shadow face matrix"),
-                    contents: bytemuck::cast_slice(&Mat4::IDENTITY.to_cols_array()),
+                    label: Some("shadow face"),
+                    contents: bytemuck::bytes_of(&FaceUniform::new(Mat4::IDENTITY, Vec3::ZERO)),
                     usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 })
             })
@@ -103,9 +121,10 @@ impl ShadowCube {
         }
     }
 
-    pub fn update(&self, queue: &wgpu::Queue, faces: &[Mat4; 6]) {
+    /// Sets the faces' view-projections around the light at `light`.
+    pub fn update(&self, queue: &wgpu::Queue, faces: &[Mat4; 6], light: Vec3) {
         for (buffer, m) in self.face_buffers.iter().zip(faces) {
-            queue.write_buffer(buffer, 0, bytemuck::cast_slice(&m.to_cols_array()));
+            queue.write_buffer(buffer, 0, bytemuck::bytes_of(&FaceUniform::new(*m, light)));
         }
     }
 }

@@ -1,5 +1,6 @@
 //! Rendering checked by pictures (R1-R3, R6): golden frames of the default
-//! scene, shadows where a tumbler hides the light, and MSAA on silhouettes.
+//! scene, shadows where a tumbler or a ball hides the light, balls drawn as
+//! the exact spheres they are, and MSAA on silhouettes.
 //!
 //! These draw off-screen on whatever adapter exists (lavapipe in CI). No
 //! adapter is a failure, never a skip.
@@ -7,7 +8,7 @@
 use glam::{Vec2, Vec3};
 use image::RgbaImage;
 use rolypoly_physics::{World, WorldConfig};
-use rolypoly_render::{Camera, RenderSettings, SceneView, Snapshot};
+use rolypoly_render::{BallView, Camera, RenderSettings, SceneView, Snapshot};
 
 mod common;
 use common::check_golden;
@@ -179,6 +180,196 @@ fn msaa_blends_silhouette_edges() {
         "4x {:.0}% vs 1x {:.0}% blended edge pixels",
         100.0 * share4,
         100.0 * share1
+    );
+}
+
+// --- balls -------------------------------------------------------------------
+
+/// The room alone, without balls or tumblers, and a camera close to where
+/// the balls are placed.
+fn empty_room_and_close_camera() -> (WorldConfig, SceneView, Camera) {
+    let mut config = WorldConfig::default();
+    config.balls.count = 0;
+    let world = world_at(&config, 1, 0.0);
+    let mut view = SceneView::from_world(&world, None);
+    view.tumblers.clear();
+    // Close: the nearer the eye, the more of a sphere's outline lies
+    // outside the circle of its radius around the centre.
+    let camera = Camera {
+        eye: Vec3::new(0.3, 1.25, 0.85),
+        target: Vec3::new(0.18, 1.02, 0.0),
+        fov_y_deg: 65.0,
+    };
+    (config, view, camera)
+}
+
+/// A red ball and a blue one sunk into it, closer to the camera on one side
+/// and further on the other, so that each hides part of the other.
+fn two_balls_that_meet() -> Vec<BallView> {
+    vec![
+        BallView {
+            position: Vec3::new(0.0, 1.0, 0.0),
+            radius: 0.3,
+            color: Vec3::new(0.9, 0.08, 0.05),
+        },
+        BallView {
+            position: Vec3::new(0.38, 1.05, 0.1),
+            radius: 0.25,
+            color: Vec3::new(0.05, 0.15, 0.9),
+        },
+    ]
+}
+
+/// Where the ray `origin + t dir` (`dir` of unit length) meets a ball: the
+/// distance `t` of the first hit, or `None`, and how far the ray passes from
+/// the centre in radii.
+fn trace(ball: &BallView, origin: Vec3, dir: Vec3) -> (Option<f32>, f32) {
+    let to_origin = origin - ball.position;
+    let along = to_origin.dot(dir);
+    let across = (to_origin - along * dir).length();
+    let hit = (across < ball.radius)
+        .then(|| -along - (ball.radius * ball.radius - across * across).sqrt());
+    (hit, across / ball.radius)
+}
+
+#[test]
+fn balls_are_exact_spheres_that_hide_each_other_where_they_meet() {
+    let (config, mut view, camera) = empty_room_and_close_camera();
+    // A black room, that no part of a ball (not even its white highlight)
+    // is mistaken for.
+    view.room_colors = [Vec3::ZERO; 6];
+    let (w, h) = (240, 160);
+    // One sample per pixel and no shadows: a pixel is a ball's exactly when
+    // the ray through its centre meets that ball first.
+    let settings = RenderSettings {
+        msaa: 1,
+        shadows: false,
+        ..RenderSettings::default()
+    };
+    let mut snap = snapshot(&config, settings, w, h);
+    let empty = snap.capture(&view, &camera).expect("frame");
+    view.balls = two_balls_that_meet();
+    let frame = snap.capture(&view, &camera).expect("frame");
+
+    let (mut checked, mut wrong) = ([0usize; 3], Vec::new());
+    for y in 0..h {
+        for x in 0..w {
+            let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+            let (origin, dir) = camera.ray(centre, Vec2::new(w as f32, h as f32));
+            let hits = [0, 1].map(|k| trace(&view.balls[k], origin, dir));
+            // Leave out the pixels that a hair decides: on an outline, or
+            // where the two surfaces are at nearly the same depth.
+            let near_outline = hits.iter().any(|(_, miss)| (miss - 1.0).abs() < 0.03);
+            let expected = match (hits[0].0, hits[1].0) {
+                (Some(a), Some(b)) if (a - b).abs() < 0.01 => continue,
+                (Some(a), Some(b)) => Some(usize::from(b < a)),
+                (Some(_), None) => Some(0),
+                (None, Some(_)) => Some(1),
+                (None, None) => None,
+            };
+            if near_outline {
+                continue;
+            }
+            let (p, q) = (frame.get_pixel(x, y).0, empty.get_pixel(x, y).0);
+            let changed = (0..3).any(|c| p[c].abs_diff(q[c]) > 24);
+            let seen = changed.then(|| usize::from(p[2] > p[0]));
+            checked[expected.map_or(2, |k| k)] += 1;
+            if seen != expected {
+                wrong.push((x, y, expected, seen));
+            }
+        }
+    }
+    assert!(
+        checked.iter().all(|&n| n > 500),
+        "red, blue and wall pixels checked: {checked:?}"
+    );
+    assert!(
+        wrong.is_empty(),
+        "{} pixels are not what the spheres show, e.g. {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(8)]
+    );
+}
+
+#[test]
+fn msaa_smooths_the_outlines_of_balls() {
+    let (config, mut view, camera) = empty_room_and_close_camera();
+    view.balls = two_balls_that_meet();
+    let (w, h) = (240, 160);
+    let four = snapshot(&config, RenderSettings::default(), w, h)
+        .capture(&view, &camera)
+        .expect("frame");
+    let one_settings = RenderSettings {
+        msaa: 1,
+        ..RenderSettings::default()
+    };
+    let one = snapshot(&config, one_settings, w, h)
+        .capture(&view, &camera)
+        .expect("frame");
+    let (share4, edges4) = blended_edge_share(&four);
+    let (share1, edges1) = blended_edge_share(&one);
+    assert!(
+        edges4 > 20 && edges1 > 20,
+        "no outline ({edges4}, {edges1} edges)"
+    );
+    assert!(
+        share4 > 0.25 && share4 > 2.0 * share1,
+        "4x {:.0}% vs 1x {:.0}% blended edge pixels",
+        100.0 * share4,
+        100.0 * share1
+    );
+}
+
+#[test]
+fn a_ball_casts_a_round_shadow_on_the_floor() {
+    let (config, mut view, _) = empty_room_and_close_camera();
+    let camera = Camera::overview(view.room_size);
+    let ball = BallView {
+        position: Vec3::new(1.2, 1.2, 0.8),
+        radius: 0.25,
+        color: Vec3::splat(0.9),
+    };
+    view.balls = vec![ball];
+    let (w, h) = (320, 180);
+    // The shadow's centre, where the light's ray through the ball's centre
+    // meets the floor, and roughly its radius there.
+    let light = view.light.position;
+    let along = light.y / (light.y - ball.position.y);
+    let shadow_centre = light + (ball.position - light) * along;
+    let shadow_radius = ball.radius * along;
+    let away = (shadow_centre - light).cross(Vec3::Y).normalize();
+    let points = [
+        shadow_centre,
+        shadow_centre + away * (0.6 * shadow_radius),
+        shadow_centre + away * (2.0 * shadow_radius),
+    ];
+    let pixels = points.map(|p| pixel_of(&camera, p, w, h));
+    // The camera sees the floor there, not the ball.
+    for &(x, y) in &pixels {
+        let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+        let (origin, dir) = camera.ray(centre, Vec2::new(w as f32, h as f32));
+        assert!(trace(&ball, origin, dir).0.is_none());
+    }
+    let on = snapshot(&config, RenderSettings::default(), w, h)
+        .capture(&view, &camera)
+        .expect("frame");
+    let off_settings = RenderSettings {
+        shadows: false,
+        ..RenderSettings::default()
+    };
+    let off = snapshot(&config, off_settings, w, h)
+        .capture(&view, &camera)
+        .expect("frame");
+    let ratio = |(x, y): (u32, u32)| luminance(&on, x, y) / luminance(&off, x, y);
+    let [middle, inside, outside] = pixels.map(ratio);
+    assert!(
+        middle < 0.6,
+        "the shadow's centre keeps {middle:.2} of its light"
+    );
+    assert!(inside < 0.6, "inside the shadow's edge keeps {inside:.2}");
+    assert!(
+        (outside - 1.0).abs() < 0.02,
+        "beside the shadow the floor keeps {outside:.2} of its light"
     );
 }
 
