@@ -21,6 +21,7 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Fullscreen, Window, WindowId};
 
+use super::fixed_steps::FixedSteps;
 use super::fly_camera::FlyCamera;
 use super::hud::{Hud, HudState};
 use super::log::EventLog;
@@ -53,10 +54,6 @@ enum MouseMode {
     /// Released by Escape: the mouse is the desktop's again.
     Free,
 }
-
-/// Most physics steps one frame may run: after a long stall (a dragged
-/// window, a debugger) the world skips ahead rather than spiral.
-const MAX_STEPS_PER_FRAME: u32 = 8;
 
 /// Opens the window on `world` and runs until it is closed.
 pub fn run(
@@ -112,7 +109,7 @@ struct App {
     look_settled: bool,
     help: bool,
 
-    accumulator: f64,
+    fixed_steps: FixedSteps,
     last_frame: Option<Instant>,
     events: Vec<Event>,
     hud_state: HudState,
@@ -159,7 +156,7 @@ impl App {
             drag_height: None,
             look_settled: false,
             help: false,
-            accumulator: 0.0,
+            fixed_steps: FixedSteps::default(),
             last_frame: None,
             events: Vec::new(),
             camera_logged: Instant::now(),
@@ -477,18 +474,14 @@ impl App {
             return;
         }
         let dt = self.world.config().solver.dt;
-        self.accumulator += elapsed;
         let started = Instant::now();
-        let mut steps = 0;
-        while self.accumulator >= dt && steps < MAX_STEPS_PER_FRAME {
-            self.fx.step_with(&mut self.world, &mut self.events);
-            self.accumulator -= dt;
-            steps += 1;
-        }
-        if steps == MAX_STEPS_PER_FRAME {
-            // Behind by more than a few steps: skip ahead instead of catching up.
-            self.accumulator = self.accumulator.min(dt);
-        }
+        let (fx, world, events) = (&mut self.fx, &mut self.world, &mut self.events);
+        let steps = self.fixed_steps.advance(
+            elapsed,
+            dt,
+            || started.elapsed(),
+            || fx.step_with(world, events),
+        );
         if steps > 0 {
             self.hud_state.step_time = started.elapsed().as_secs_f64() / steps as f64;
         }

@@ -2,6 +2,7 @@
 //! pause, grab-and-drag, re-initialising, the HUD and screenshots.
 
 mod app;
+mod fixed_steps;
 mod fly_camera;
 mod hud;
 mod log;
