@@ -475,6 +475,7 @@ impl App {
         }
         let dt = self.world.config().solver.dt;
         let started = Instant::now();
+        let skipped_before = self.fixed_steps.skipped();
         let (fx, world, events) = (&mut self.fx, &mut self.world, &mut self.events);
         let steps = self.fixed_steps.advance(
             elapsed,
@@ -482,6 +483,8 @@ impl App {
             || started.elapsed(),
             || fx.step_with(world, events),
         );
+        self.hud_state
+            .pace(elapsed, self.fixed_steps.skipped() - skipped_before);
         if steps > 0 {
             self.hud_state.step_time = started.elapsed().as_secs_f64() / steps as f64;
         }

@@ -17,6 +17,8 @@ pub const STEP_BUDGET_PER_FRAME: Duration = Duration::from_millis(33);
 #[derive(Debug, Default)]
 pub struct FixedSteps {
     behind: f64,
+    /// Real time skipped so far, never to be simulated (seconds).
+    skipped: f64,
 }
 
 impl FixedSteps {
@@ -37,6 +39,7 @@ impl FixedSteps {
         while self.behind >= dt {
             if steps == MAX_STEPS_PER_FRAME || (steps > 0 && spent() >= STEP_BUDGET_PER_FRAME) {
                 // Skip ahead instead of catching up.
+                self.skipped += (self.behind - dt).max(0.0);
                 self.behind = self.behind.min(dt);
                 break;
             }
@@ -45,6 +48,11 @@ impl FixedSteps {
             steps += 1;
         }
         steps
+    }
+
+    /// Real time skipped so far, never to be simulated (seconds).
+    pub fn skipped(&self) -> f64 {
+        self.skipped
     }
 }
 
@@ -98,6 +106,18 @@ mod tests {
         // at a sixth of real time or so but the view still moving.
         let steps = frames(100, 0.1, Duration::from_millis(80));
         assert!(steps.iter().all(|&s| s == 1), "{steps:?}");
+        // What is skipped is what did not run: simulated plus skipped
+        // plus what is still owed adds up to the real time.
+        let mut clock = FixedSteps::default();
+        let mut ran = 0;
+        for _ in 0..100 {
+            let spent = Cell::new(Duration::ZERO);
+            let tick = || spent.set(spent.get() + Duration::from_millis(80));
+            ran += clock.advance(0.1, DT, || spent.get(), tick);
+        }
+        let accounted = f64::from(ran) * DT + clock.skipped() + clock.behind;
+        assert!((accounted - 10.0).abs() < 1e-9, "{accounted}");
+        assert!((clock.skipped() - (10.0 - 100.0 * DT)).abs() < DT + 1e-9);
         // Steps of 10 ms: four fit in the budget, not the twelve asked for.
         let steps = frames(100, 0.1, Duration::from_millis(10));
         assert!(steps.iter().all(|&s| s == 4), "{steps:?}");

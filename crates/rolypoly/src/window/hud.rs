@@ -21,6 +21,9 @@ pub struct HudState {
     pub paused: bool,
     pub grabbing: bool,
     pub sim_time: f64,
+    /// Simulated time per real time, smoothed: below 1 when the steps
+    /// cannot keep up and the world runs in slow motion.
+    pub pace: f64,
     /// Total energy, one sample every few frames.
     pub energy: VecDeque<f32>,
     frames: u64,
@@ -43,8 +46,17 @@ impl HudState {
             paused: false,
             grabbing: false,
             sim_time: 0.0,
+            pace: 1.0,
             energy: VecDeque::with_capacity(ENERGY_SAMPLES),
             frames: 0,
+        }
+    }
+
+    /// Notes a frame of `elapsed` seconds that skipped `skipped` of them.
+    pub fn pace(&mut self, elapsed: f64, skipped: f64) {
+        if elapsed > 0.0 {
+            let pace = (1.0 - skipped / elapsed).clamp(0.0, 1.0);
+            self.pace = 0.9 * self.pace + 0.1 * pace;
         }
     }
 
@@ -158,10 +170,14 @@ impl Hud {
                     ui.label(format!("time {:.2} s, seed {}", s.sim_time, s.seed));
                     let mut modes = Vec::new();
                     if s.paused {
-                        modes.push("PAUSED");
+                        modes.push("PAUSED".to_string());
                     }
                     if s.grabbing {
-                        modes.push("GRAB MODE");
+                        modes.push("GRAB MODE".to_string());
+                    }
+                    if s.pace < 0.95 && !s.paused {
+                        // The steps cannot keep up with real time.
+                        modes.push(format!("SLOW MOTION {:.0} %", 100.0 * s.pace));
                     }
                     if !modes.is_empty() {
                         ui.colored_label(egui::Color32::from_rgb(255, 200, 80), modes.join("  "));
