@@ -30,6 +30,25 @@ fn luminance(img: &RgbaImage, x: u32, y: u32) -> f32 {
     (0.2126 * p[0] as f32 + 0.7152 * p[1] as f32 + 0.0722 * p[2] as f32) / 255.0
 }
 
+/// The frame with the default settings, and with the settings `change`
+/// makes of them.
+fn default_and(
+    change: impl FnOnce(&mut RenderSettings),
+    config: &WorldConfig,
+    view: &SceneView,
+    camera: &Camera,
+    (w, h): (u32, u32),
+) -> (RgbaImage, RgbaImage) {
+    let mut changed = RenderSettings::default();
+    change(&mut changed);
+    let [default, changed] = [RenderSettings::default(), changed].map(|settings| {
+        snapshot(config, settings, w, h)
+            .capture(view, camera)
+            .expect("frame")
+    });
+    (default, changed)
+}
+
 // --- golden frames ---------------------------------------------------------
 
 #[test]
@@ -87,16 +106,7 @@ fn a_tumbler_shadows_the_floor_and_lit_floor_is_unchanged() {
     let shaded = pixel_of(&camera, shaded_point, w, h);
     let lit = pixel_of(&camera, lit_point, w, h);
 
-    let on = snapshot(&config, RenderSettings::default(), w, h)
-        .capture(&view, &camera)
-        .expect("frame");
-    let off_settings = RenderSettings {
-        shadows: false,
-        ..RenderSettings::default()
-    };
-    let off = snapshot(&config, off_settings, w, h)
-        .capture(&view, &camera)
-        .expect("frame");
+    let (on, off) = default_and(|s| s.shadows = false, &config, &view, &camera, (w, h));
 
     let (s_on, s_off) = (
         luminance(&on, shaded.0, shaded.1),
@@ -153,16 +163,7 @@ fn msaa_blends_silhouette_edges() {
         fov_y_deg: 50.0,
     };
     let (w, h) = (240, 160);
-    let four = snapshot(&config, RenderSettings::default(), w, h)
-        .capture(&view, &camera)
-        .expect("frame");
-    let one_settings = RenderSettings {
-        msaa: 1,
-        ..RenderSettings::default()
-    };
-    let one = snapshot(&config, one_settings, w, h)
-        .capture(&view, &camera)
-        .expect("frame");
+    let (four, one) = default_and(|s| s.msaa = 1, &config, &view, &camera, (w, h));
     let (share4, edges4) = blended_edge_share(&four);
     let (share1, edges1) = blended_edge_share(&one);
     assert!(
@@ -296,16 +297,7 @@ fn msaa_smooths_the_outlines_of_balls() {
     let (config, mut view, camera) = empty_room_and_close_camera();
     view.balls = two_balls_that_meet();
     let (w, h) = (240, 160);
-    let four = snapshot(&config, RenderSettings::default(), w, h)
-        .capture(&view, &camera)
-        .expect("frame");
-    let one_settings = RenderSettings {
-        msaa: 1,
-        ..RenderSettings::default()
-    };
-    let one = snapshot(&config, one_settings, w, h)
-        .capture(&view, &camera)
-        .expect("frame");
+    let (four, one) = default_and(|s| s.msaa = 1, &config, &view, &camera, (w, h));
     let (share4, edges4) = blended_edge_share(&four);
     let (share1, edges1) = blended_edge_share(&one);
     assert!(
@@ -350,16 +342,7 @@ fn a_ball_casts_a_round_shadow_on_the_floor() {
         let (origin, dir) = camera.ray(centre, Vec2::new(w as f32, h as f32));
         assert!(trace(&ball, origin, dir).0.is_none());
     }
-    let on = snapshot(&config, RenderSettings::default(), w, h)
-        .capture(&view, &camera)
-        .expect("frame");
-    let off_settings = RenderSettings {
-        shadows: false,
-        ..RenderSettings::default()
-    };
-    let off = snapshot(&config, off_settings, w, h)
-        .capture(&view, &camera)
-        .expect("frame");
+    let (on, off) = default_and(|s| s.shadows = false, &config, &view, &camera, (w, h));
     let ratio = |(x, y): (u32, u32)| luminance(&on, x, y) / luminance(&off, x, y);
     let [middle, inside, outside] = pixels.map(ratio);
     assert!(
