@@ -38,6 +38,9 @@ pub struct BallsConfig {
     /// Initial speeds are drawn uniformly from this range (m/s).
     pub speed_min: f64,
     pub speed_max: f64,
+    /// The balls start in this share of the room's height, from the floor
+    /// up (0 < share <= 1): a crowded room can start below the eye.
+    pub start_fill: f64,
     /// Colour of a ball that has not hit anything yet.
     pub color: Rgb,
 }
@@ -173,6 +176,7 @@ impl Default for WorldConfig {
                 restitution: 0.85,
                 speed_min: 2.0,
                 speed_max: 6.0,
+                start_fill: 1.0,
                 color: [0.95, 0.95, 0.95],
             },
             tumblers: TumblersConfig {

@@ -459,12 +459,25 @@ impl World {
             return Ok(());
         }
         let r = self.config.balls.radius;
+        let fill = self.config.balls.start_fill;
         let lo = self.room.min + DVec3::splat(r);
-        let hi = self.room.max - DVec3::splat(r);
+        let mut top = self.room.max;
+        top.y = self.room.min.y + fill * (self.room.max.y - self.room.min.y);
+        let hi = top - DVec3::splat(r);
         let span = hi - lo;
+        if !(fill > 0.0 && fill <= 1.0) {
+            return Err(BuildError(format!(
+                "balls.start_fill = {fill} is out of range: allowed > 0 and <= 1"
+            )));
+        }
+        let within = if fill < 1.0 {
+            format!("the lowest {fill} of the room's height (balls.start_fill)")
+        } else {
+            "the room".to_string()
+        };
         if span.min_element() < 0.0 {
             return Err(BuildError(format!(
-                "balls of radius {r} do not fit in the room"
+                "balls of radius {r} do not fit in {within}"
             )));
         }
         // Aim for about four sites per ball, never closer than 2.1 radii.
@@ -495,7 +508,7 @@ impl World {
         }
         if sites.len() < n {
             return Err(BuildError(format!(
-                "{n} balls of radius {r} do not fit in the room beside the tumblers (room for {})",
+                "{n} balls of radius {r} do not fit in {within} beside the tumblers (room for {})",
                 sites.len()
             )));
         }

@@ -72,6 +72,32 @@ fn a_thousand_fast_balls_and_the_fireball_never_escape() {
 }
 
 #[test]
+fn balls_start_in_the_share_of_the_room_they_are_given_or_the_world_says_why() {
+    let mut cfg = WorldConfig::default();
+    cfg.balls.count = 2000;
+    cfg.balls.start_fill = 0.25;
+    let w = build(cfg.clone(), 3);
+    let top = 0.25 * w.room().max.y;
+    let heights = w.balls().positions().iter().map(|p| p.y);
+    let highest = heights.clone().fold(f64::MIN, f64::max);
+    assert!(
+        highest + cfg.balls.radius <= top + 1e-9,
+        "ball above the fill: {highest}"
+    );
+    // Spread through that share, not heaped on the floor.
+    let lowest = heights.fold(f64::MAX, f64::min);
+    assert!(highest - lowest > 0.5 * (top - 2.0 * cfg.balls.radius));
+    assert_inside_and_finite(&w, 0);
+
+    // Too thin a share for one ball, or none at all, is an error naming it.
+    for fill in [0.01, 0.0, f64::NAN] {
+        cfg.balls.start_fill = fill;
+        let e = World::new(cfg.clone(), 3).err().expect("cannot be built");
+        assert!(e.to_string().contains("balls.start_fill"), "{e}");
+    }
+}
+
+#[test]
 fn the_default_scene_comes_to_rest_within_two_minutes() {
     let mut w = build(WorldConfig::default(), 1);
     let dt = w.config().solver.dt;

@@ -14,10 +14,12 @@ fn main() {
     let mut ten_k = WorldConfig::default();
     ten_k.balls.count = 10_000;
     ten_k.room.size = glam::DVec3::new(16.0, 6.0, 16.0);
-    // The balls of scenes/ballpit-100k.toml, spread through its room.
+    // The balls of scenes/ballpit-100k.toml, spread through the lowest 2 m
+    // of its room.
     let mut hundred_k = WorldConfig::default();
     hundred_k.balls.count = 100_000;
     hundred_k.balls.radius = 0.1;
+    hundred_k.balls.start_fill = 0.4;
     hundred_k.room.size = glam::DVec3::new(24.0, 5.0, 24.0);
     let cases = [
         ("default scene (30 balls)", WorldConfig::default(), 20),

@@ -333,6 +333,7 @@ struct FileBalls {
     restitution: Option<Spanned<f64>>,
     speed_min: Option<Spanned<f64>>,
     speed_max: Option<Spanned<f64>>,
+    start_fill: Option<Spanned<f64>>,
     color: Option<Spanned<Vec3>>,
 }
 
@@ -562,6 +563,12 @@ impl Overlay<'_> {
                 "balls.speed_max",
                 &mut c.balls.speed_max,
                 balls.speed_max,
+                |v| v,
+            );
+            self.set(
+                "balls.start_fill",
+                &mut c.balls.start_fill,
+                balls.start_fill,
                 |v| v,
             );
             self.set("balls.color", &mut c.balls.color, balls.color, rgb);
@@ -1046,6 +1053,7 @@ impl Checker<'_> {
                 "at least balls.speed_min",
             )?;
         }
+        self.real("balls.start_fill", b.start_fill, Bounds::positive(1.0))?;
         self.color("balls.color", b.color)?;
 
         self.check_tumblers(fits, fits_why)?;
@@ -1596,6 +1604,12 @@ mod tests {
         assert!(
             text.starts_with("test.toml: tumblers.placement[0].x = -2.2 (built-in default)"),
             "{text}"
+        );
+
+        let text = error_text("[balls]\nstart_fill = 1.5\n");
+        assert_eq!(
+            text,
+            "test.toml:2: balls.start_fill = 1.5 is out of range: allowed > 0 and <= 1"
         );
 
         let text = error_text("[balls]\nspeed_min = 5\nspeed_max = 4\n");
