@@ -42,12 +42,15 @@ impl Gpu {
     /// (vulkan, gl, metal, dx12) chooses the backends; without it the
     /// primary ones (Vulkan, Metal, DX12) are tried first, then OpenGL.
     pub fn headless() -> Result<Gpu, RenderError> {
-        let from_env = wgpu::Backends::from_env();
-        let attempts = match from_env {
-            Some(chosen) => vec![chosen],
-            None => vec![wgpu::Backends::PRIMARY, wgpu::Backends::GL],
-        };
-        for backends in &attempts {
+        match wgpu::Backends::from_env() {
+            Some(chosen) => Gpu::headless_on(&[chosen]),
+            None => Gpu::headless_on(&[wgpu::Backends::PRIMARY, wgpu::Backends::GL]),
+        }
+    }
+
+    /// Opens the best adapter of the first of `attempts` that has one.
+    pub fn headless_on(attempts: &[wgpu::Backends]) -> Result<Gpu, RenderError> {
+        for backends in attempts {
             let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
             desc.backends = *backends;
             let instance = wgpu::Instance::new(desc);

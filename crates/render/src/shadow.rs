@@ -5,6 +5,12 @@ use glam::{Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Layers of the shadow texture: the six faces and one never drawn. OpenGL
+/// must fix a texture's kind when it is made, and wgpu makes a square
+/// texture of six layers a cube map there, which then samples as nothing
+/// through the 2D array view (all in shadow). A seventh layer keeps it an
+/// array on every backend.
+const LAYERS: u32 = 7;
 /// Near and far planes of the faces, in metres: the room's scale.
 pub const NEAR: f32 = 0.05;
 pub const FAR: f32 = 40.0;
@@ -46,7 +52,7 @@ impl FaceUniform {
 
 pub struct ShadowCube {
     pub size: u32,
-    /// All six layers, for sampling.
+    /// Every layer, for sampling: the faces are the first six.
     pub array_view: wgpu::TextureView,
     /// One view per layer, to draw into.
     pub face_views: Vec<wgpu::TextureView>,
@@ -65,7 +71,7 @@ impl ShadowCube {
             size: wgpu::Extent3d {
                 width: size,
                 height: size,
-                depth_or_array_layers: 6,
+                depth_or_array_layers: LAYERS,
             },
             mip_level_count: 1,
             sample_count: 1,

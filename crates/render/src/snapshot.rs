@@ -28,7 +28,25 @@ impl Snapshot {
         height: u32,
         tumbler_mesh: Option<MeshData>,
     ) -> Result<Snapshot, RenderError> {
-        let gpu = Gpu::headless()?;
+        Snapshot::on(
+            Gpu::headless()?,
+            config,
+            settings,
+            width,
+            height,
+            tumbler_mesh,
+        )
+    }
+
+    /// As [`Snapshot::new`], on a GPU already open.
+    pub fn on(
+        gpu: Gpu,
+        config: &WorldConfig,
+        settings: RenderSettings,
+        width: u32,
+        height: u32,
+        tumbler_mesh: Option<MeshData>,
+    ) -> Result<Snapshot, RenderError> {
         let spheres = &config.tumblers.spheres;
         let mesh = match tumbler_mesh {
             Some(mesh) => mesh,
