@@ -204,14 +204,25 @@ fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f
 // circle at any distance. The shadow faces draw the balls the same way, with
 // the light as the eye.
 
+// A ball needs no matrix: its centre, its radius and its colour, 32 bytes
+// where an object with a model matrix takes 96. All balls share one
+// material, given to the ball pipeline as constants.
+struct BallIn {
+    // xyz: the centre; w: the radius.
+    @location(3) sphere: vec4<f32>,
+    @location(4) color: vec3<f32>,
+};
+
+override BALL_KIND: f32;
+override BALL_SPECULAR: f32;
+override BALL_SHININESS: f32;
+
 struct BallOut {
     @builtin(position) clip: vec4<f32>,
     // The point on the square; the ray runs from the eye through it.
     @location(0) world: vec3<f32>,
-    // xyz: the centre; w: the radius.
     @location(1) @interpolate(flat) sphere: vec4<f32>,
-    @location(2) @interpolate(flat) color: vec4<f32>,
-    @location(3) @interpolate(flat) material: vec4<f32>,
+    @location(2) @interpolate(flat) color: vec3<f32>,
 };
 
 // Corner `corner` (each coordinate -1 or 1) of the square through the
@@ -234,11 +245,6 @@ fn ball_square_corner(sphere: vec4<f32>, eye: vec3<f32>, corner: vec2<f32>) -> v
     let side = normalize(cross(axis, helper));
     let up = cross(side, axis);
     return centre + (side * corner.x + up * corner.y) * half;
-}
-
-fn ball_sphere(i: InstanceIn) -> vec4<f32> {
-    // Balls are placed with a uniform scale: the radius.
-    return vec4<f32>(i.m3.xyz, length(i.m0.xyz));
 }
 
 // Where the ray from `eye` through `through` meets the sphere, and how far
@@ -268,15 +274,13 @@ fn depth_of(view_proj: mat4x4<f32>, point: vec3<f32>) -> f32 {
 }
 
 @vertex
-fn vs_ball(v: VertexIn, i: InstanceIn) -> BallOut {
-    let sphere = ball_sphere(i);
-    let world = ball_square_corner(sphere, globals.camera_pos.xyz, v.position.xy * 2.0 - 1.0);
+fn vs_ball(v: VertexIn, ball: BallIn) -> BallOut {
+    let world = ball_square_corner(ball.sphere, globals.camera_pos.xyz, v.position.xy * 2.0 - 1.0);
     var out: BallOut;
     out.clip = globals.view_proj * vec4<f32>(world, 1.0);
     out.world = world;
-    out.sphere = sphere;
-    out.color = i.color;
-    out.material = i.material;
+    out.sphere = ball.sphere;
+    out.color = ball.color;
     return out;
 }
 
@@ -301,7 +305,8 @@ fn fs_ball(in: BallOut) -> BallFragment {
     }
     let n = normalize(hit.point - in.sphere.xyz);
     var out: BallFragment;
-    out.color = vec4<f32>(blinn_phong(in.color.rgb, hit.point, n, in.material), coverage);
+    let material = vec4<f32>(BALL_KIND, BALL_SPECULAR, BALL_SHININESS, 0.0);
+    out.color = vec4<f32>(blinn_phong(in.color, hit.point, n, material), coverage);
     out.depth = depth_of(globals.view_proj, hit.point);
     return out;
 }
@@ -357,13 +362,12 @@ struct BallShadowOut {
 };
 
 @vertex
-fn vs_ball_shadow(v: VertexIn, i: InstanceIn) -> BallShadowOut {
-    let sphere = ball_sphere(i);
-    let world = ball_square_corner(sphere, shadow_face_uniform.light_pos.xyz, v.position.xy * 2.0 - 1.0);
+fn vs_ball_shadow(v: VertexIn, ball: BallIn) -> BallShadowOut {
+    let world = ball_square_corner(ball.sphere, shadow_face_uniform.light_pos.xyz, v.position.xy * 2.0 - 1.0);
     var out: BallShadowOut;
     out.clip = shadow_face_uniform.view_proj * vec4<f32>(world, 1.0);
     out.world = world;
-    out.sphere = sphere;
+    out.sphere = ball.sphere;
     return out;
 }
 
