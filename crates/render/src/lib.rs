@@ -9,6 +9,7 @@
 
 mod camera;
 mod gpu;
+mod instances;
 mod mesh;
 mod offscreen;
 mod paint;

@@ -3,11 +3,11 @@
 
 use crate::camera::Camera;
 use crate::gpu::{Gpu, RenderError};
+use crate::instances::{self, BALL_MATERIAL, BallInstance, Instance, InstanceBuffer};
 use crate::mesh::{GpuMesh, MeshData, Vertex};
 use crate::shadow::{self, ShadowCube};
 use crate::view::SceneView;
 use bytemuck::{Pod, Zeroable};
-use glam::{Mat4, Vec3};
 use std::time::{Duration, Instant};
 use wgpu::util::DeviceExt;
 
@@ -46,129 +46,6 @@ pub struct FrameStats {
     pub cpu_time: Duration,
 }
 
-/// Material kinds, as the shader knows them.
-#[derive(Clone, Copy)]
-enum Kind {
-    Plain = 0,
-    Wood = 1,
-    Painted = 2,
-    Glossy = 3,
-}
-
-/// Per-object data: model matrix, colour, material.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-struct Instance {
-    model: [[f32; 4]; 4],
-    color: [f32; 4],
-    /// kind, specular strength, shininess, emission.
-    material: [f32; 4],
-}
-
-impl Instance {
-    const ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
-        3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4, 7 => Float32x4, 8 => Float32x4
-    ];
-
-    fn layout() -> wgpu::VertexBufferLayout<'static> {
-        wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<Instance>() as u64,
-            step_mode: wgpu::VertexStepMode::Instance,
-            attributes: &Self::ATTRIBUTES,
-        }
-    }
-
-    fn new(
-        model: Mat4,
-        color: Vec3,
-        kind: Kind,
-        specular: f32,
-        shininess: f32,
-        emission: f32,
-    ) -> Instance {
-        Instance {
-            model: model.to_cols_array_2d(),
-            color: color.extend(1.0).to_array(),
-            material: [kind as u32 as f32, specular, shininess, emission],
-        }
-    }
-
-    /// Something that glows: `shape` 0 is a cube, 1 a shell.
-    fn glow(model: Mat4, color: Vec3, alpha: f32, shape: f32) -> Instance {
-        Instance {
-            model: model.to_cols_array_2d(),
-            color: color.extend(alpha).to_array(),
-            material: [shape, 0.0, 0.0, 0.0],
-        }
-    }
-}
-
-/// A ball: its sphere and colour, all a traced ball needs (see `BallIn` in
-/// scene.wgsl). A third of an [`Instance`], which for 100 000 balls is
-/// 6.4 MB less to fill and upload every frame.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
-struct BallInstance {
-    /// Centre, then radius.
-    sphere: [f32; 4],
-    color: [f32; 3],
-    /// Keeps instances 32 bytes apart.
-    _pad: f32,
-}
-
-impl BallInstance {
-    const ATTRIBUTES: [wgpu::VertexAttribute; 2] =
-        wgpu::vertex_attr_array![3 => Float32x4, 4 => Float32x3];
-
-    fn layout() -> wgpu::VertexBufferLayout<'static> {
-        wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<BallInstance>() as u64,
-            step_mode: wgpu::VertexStepMode::Instance,
-            attributes: &Self::ATTRIBUTES,
-        }
-    }
-}
-
-/// The one material of every ball: glossy and sharp-highlighted.
-const BALL_MATERIAL: (Kind, f32, f32) = (Kind::Glossy, 0.9, 110.0);
-
-/// Instances of one layout, filled each frame and uploaded into a buffer
-/// that grows to the largest frame seen.
-struct InstanceBuffer<T> {
-    items: Vec<T>,
-    buffer: wgpu::Buffer,
-    capacity: usize,
-    label: &'static str,
-}
-
-impl<T: Pod> InstanceBuffer<T> {
-    fn new(device: &wgpu::Device, label: &'static str) -> InstanceBuffer<T> {
-        let capacity = 256;
-        InstanceBuffer {
-            items: Vec::new(),
-            buffer: instance_buffer::<T>(device, label, capacity),
-            capacity,
-            label,
-        }
-    }
-
-    fn upload(&mut self, gpu: &Gpu) {
-        if self.items.len() > self.capacity {
-            self.capacity = self.items.len().next_power_of_two();
-            self.buffer = instance_buffer::<T>(&gpu.device, self.label, self.capacity);
-        }
-        if !self.items.is_empty() {
-            gpu.queue
-                .write_buffer(&self.buffer, 0, bytemuck::cast_slice(&self.items));
-        }
-    }
-
-    /// All instances, for a draw call.
-    fn range(&self) -> std::ops::Range<u32> {
-        0..self.items.len() as u32
-    }
-}
-
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct Globals {
@@ -189,19 +66,6 @@ struct Targets {
     hdr: wgpu::TextureView,
     depth: wgpu::TextureView,
     tonemap_bind_group: wgpu::BindGroup,
-}
-
-/// Where each kind of object sits in the instance buffer this frame (the
-/// balls have a buffer of their own).
-#[derive(Default)]
-struct Ranges {
-    room: std::ops::Range<u32>,
-    tumblers: std::ops::Range<u32>,
-    bulb: std::ops::Range<u32>,
-    /// Particles and the fireball's cores: glowing cubes.
-    cubes: std::ops::Range<u32>,
-    /// The fireball's shells.
-    shells: std::ops::Range<u32>,
 }
 
 pub struct Renderer {
@@ -643,9 +507,9 @@ impl Renderer {
         }
         let start = Instant::now();
         self.ensure_targets(gpu, width, height);
-        let ranges = self.build_instances(view);
+        let ranges = instances::fill_scene(&mut self.instances.items, view);
         self.instances.upload(gpu);
-        self.build_balls(view);
+        instances::fill_balls(&mut self.balls.items, view);
         self.balls.upload(gpu);
 
         let faces = shadow::face_view_projections(view.light.position);
@@ -797,135 +661,6 @@ impl Renderer {
         })
     }
 
-    /// Fills the instance list: room, tumblers, bulb, particles and the
-    /// fireball.
-    fn build_instances(&mut self, view: &SceneView) -> Ranges {
-        let list = &mut self.instances.items;
-        list.clear();
-        let mut ranges = Ranges::default();
-        let start = list.len() as u32;
-        let size = view.room_size;
-        let (hx, hz) = (0.5 * size.x, 0.5 * size.z);
-        // Each wall maps the unit quad's x and y onto two directions whose
-        // cross product is the wall's inward normal.
-        let walls = [
-            (
-                Vec3::X * size.x,
-                Vec3::NEG_Z * size.z,
-                Vec3::new(-hx, 0.0, hz),
-            ),
-            (
-                Vec3::X * size.x,
-                Vec3::Z * size.z,
-                Vec3::new(-hx, size.y, -hz),
-            ),
-            (Vec3::Y * size.y, Vec3::Z * size.z, Vec3::new(-hx, 0.0, -hz)),
-            (Vec3::Z * size.z, Vec3::Y * size.y, Vec3::new(hx, 0.0, -hz)),
-            (Vec3::X * size.x, Vec3::Y * size.y, Vec3::new(-hx, 0.0, -hz)),
-            (Vec3::Y * size.y, Vec3::X * size.x, Vec3::new(-hx, 0.0, hz)),
-        ];
-        for (i, (u, v, origin)) in walls.into_iter().enumerate() {
-            let normal = u.cross(v).normalize();
-            let model = Mat4::from_cols(
-                u.extend(0.0),
-                v.extend(0.0),
-                normal.extend(0.0),
-                origin.extend(1.0),
-            );
-            let (kind, specular, shininess) = if i == 0 {
-                (Kind::Wood, 0.35, 40.0)
-            } else {
-                (Kind::Plain, 0.04, 8.0)
-            };
-            list.push(Instance::new(
-                model,
-                view.room_colors[i],
-                kind,
-                specular,
-                shininess,
-                0.0,
-            ));
-        }
-        ranges.room = start..list.len() as u32;
-
-        let start = list.len() as u32;
-        for t in &view.tumblers {
-            list.push(Instance::new(
-                t.model(),
-                t.color,
-                Kind::Painted,
-                0.55,
-                60.0,
-                0.0,
-            ));
-        }
-        ranges.tumblers = start..list.len() as u32;
-
-        let start = list.len() as u32;
-        let light = view.light;
-        let model = Mat4::from_scale_rotation_translation(
-            Vec3::splat(light.bulb_radius),
-            glam::Quat::IDENTITY,
-            light.position,
-        );
-        let glow = light.color / light.color.max_element().max(1e-6);
-        list.push(Instance::new(model, glow, Kind::Plain, 0.0, 1.0, 12.0));
-        ranges.bulb = start..list.len() as u32;
-
-        let start = list.len() as u32;
-        for p in &view.particles {
-            let model =
-                Mat4::from_scale_rotation_translation(Vec3::splat(p.size), p.rotation, p.position);
-            list.push(Instance::glow(model, p.color, p.alpha, 0.0));
-        }
-        if let Some(look) = &view.fireball {
-            for core in &look.cores {
-                let model = Mat4::from_scale_rotation_translation(
-                    Vec3::splat(core.size),
-                    core.rotation,
-                    core.position,
-                );
-                list.push(Instance::glow(
-                    model,
-                    Vec3::new(1.0, 0.7, 0.3) * 2.5,
-                    1.0,
-                    0.0,
-                ));
-            }
-        }
-        ranges.cubes = start..list.len() as u32;
-
-        let start = list.len() as u32;
-        if let Some(look) = &view.fireball {
-            let colors = [
-                Vec3::new(1.0, 0.4, 0.05) * 1.4,
-                Vec3::new(1.0, 0.15, 0.3) * 1.0,
-            ];
-            for (shell, color) in look.shells.iter().zip(colors) {
-                let model = Mat4::from_scale_rotation_translation(
-                    Vec3::splat(shell.radius),
-                    glam::Quat::IDENTITY,
-                    look.centre,
-                );
-                list.push(Instance::glow(model, color, shell.alpha, 1.0));
-            }
-        }
-        ranges.shells = start..list.len() as u32;
-        ranges
-    }
-
-    /// Fills the ball list.
-    fn build_balls(&mut self, view: &SceneView) {
-        self.balls.items.clear();
-        self.balls
-            .items
-            .extend(view.balls.iter().map(|b| BallInstance {
-                sphere: b.position.extend(b.radius).to_array(),
-                color: b.color.to_array(),
-                _pad: 0.0,
-            }));
-    }
-
     fn ensure_targets(&mut self, gpu: &Gpu, width: u32, height: u32) {
         if self
             .targets
@@ -1059,15 +794,6 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGrou
         },
         count: None,
     }
-}
-
-fn instance_buffer<T>(device: &wgpu::Device, label: &str, capacity: usize) -> wgpu::Buffer {
-    device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some(label),
-        size: (capacity * std::mem::size_of::<T>()) as u64,
-        usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    })
 }
 
 fn upload_texture(gpu: &Gpu, label: &str, image: &image::RgbaImage) -> wgpu::TextureView {
