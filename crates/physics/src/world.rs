@@ -460,16 +460,16 @@ impl World {
         }
         let r = self.config.balls.radius;
         let fill = self.config.balls.start_fill;
-        let lo = self.room.min + DVec3::splat(r);
-        let mut top = self.room.max;
-        top.y = self.room.min.y + fill * (self.room.max.y - self.room.min.y);
-        let hi = top - DVec3::splat(r);
-        let span = hi - lo;
         if !(fill > 0.0 && fill <= 1.0) {
             return Err(BuildError(format!(
                 "balls.start_fill = {fill} is out of range: allowed > 0 and <= 1"
             )));
         }
+        let lo = self.room.min + DVec3::splat(r);
+        let mut top = self.room.max;
+        top.y = self.room.min.y + fill * (self.room.max.y - self.room.min.y);
+        let hi = top - DVec3::splat(r);
+        let span = hi - lo;
         let within = if fill < 1.0 {
             format!("the lowest {fill} of the room's height (balls.start_fill)")
         } else {
