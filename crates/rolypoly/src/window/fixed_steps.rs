@@ -3,9 +3,11 @@
 
 use std::time::Duration;
 
-/// Most physics steps one frame may run: after a long stall (a dragged
-/// window, a debugger) the world skips ahead rather than spiral.
-pub const MAX_STEPS_PER_FRAME: u32 = 8;
+/// Most simulated time one frame may catch up on (seconds): after a long
+/// stall (a dragged window, a debugger) the world skips ahead rather than
+/// spiral. A quarter of a second keeps cheap steps in real time down to
+/// four frames a second, as a software renderer may draw.
+pub const MAX_CATCH_UP: f64 = 0.25;
 
 /// Most time one frame spends stepping. A world whose steps cannot keep up
 /// with real time (a pit of 100 000 balls on a small machine) runs in slow
@@ -23,10 +25,10 @@ pub struct FixedSteps {
 
 impl FixedSteps {
     /// Adds `elapsed` seconds of real time and runs `step` once per `dt` of
-    /// it, until caught up, or [`MAX_STEPS_PER_FRAME`] have run, or they
-    /// have taken [`STEP_BUDGET_PER_FRAME`] by `spent` (the time since the
-    /// frame began stepping). Stopped short, it forgets the time it could
-    /// not simulate. Returns how many steps ran.
+    /// it, until caught up, or the steps have simulated [`MAX_CATCH_UP`],
+    /// or they have taken [`STEP_BUDGET_PER_FRAME`] by `spent` (the time
+    /// since the frame began stepping). Stopped short, it forgets the time
+    /// it could not simulate. Returns how many steps ran.
     pub fn advance(
         &mut self,
         elapsed: f64,
@@ -35,9 +37,10 @@ impl FixedSteps {
         mut step: impl FnMut(),
     ) -> u32 {
         self.behind += elapsed;
+        let max_steps = max_steps_per_frame(dt);
         let mut steps = 0;
         while self.behind >= dt {
-            if steps == MAX_STEPS_PER_FRAME || (steps > 0 && spent() >= STEP_BUDGET_PER_FRAME) {
+            if steps == max_steps || (steps > 0 && spent() >= STEP_BUDGET_PER_FRAME) {
                 // Skip ahead instead of catching up.
                 self.skipped += (self.behind - dt).max(0.0);
                 self.behind = self.behind.min(dt);
@@ -54,6 +57,11 @@ impl FixedSteps {
     pub fn skipped(&self) -> f64 {
         self.skipped
     }
+}
+
+/// Steps of `dt` that simulate [`MAX_CATCH_UP`]; at least one.
+fn max_steps_per_frame(dt: f64) -> u32 {
+    (MAX_CATCH_UP / dt).round().max(1.0) as u32
 }
 
 #[cfg(test)]
@@ -91,18 +99,27 @@ mod tests {
     }
 
     #[test]
+    fn a_slow_renderer_with_cheap_steps_keeps_real_time() {
+        // Five frames a second, as a software renderer draws a room: each
+        // frame runs the 24 steps of its fifth of a second.
+        let steps = frames(50, 0.2, Duration::from_micros(30));
+        assert!(steps.iter().all(|&s| s == 24), "{steps:?}");
+    }
+
+    #[test]
     fn a_stall_skips_ahead_instead_of_catching_up() {
         let mut clock = FixedSteps::default();
         let steps = clock.advance(2.0, DT, || Duration::ZERO, || {});
-        assert_eq!(steps, MAX_STEPS_PER_FRAME);
+        assert_eq!(steps, 30, "a quarter of a second of steps");
+        assert!((clock.skipped() - (2.0 - 30.0 * DT - clock.behind)).abs() < 1e-9);
         // The next ordinary frame runs what it always would.
         assert!(clock.advance(1.0 / 60.0, DT, || Duration::ZERO, || {}) <= 3);
     }
 
     #[test]
     fn steps_that_cannot_keep_up_run_slow_motion_at_a_usable_frame_rate() {
-        // Steps of 80 ms: real time asks for two a frame, and would take
-        // frames of 0.64 s at eight. One runs per frame instead, the world
+        // Steps of 80 ms: real time asks for twelve a frame, and would
+        // take frames of about a second. One runs per frame instead, the world
         // at a sixth of real time or so but the view still moving.
         let steps = frames(100, 0.1, Duration::from_millis(80));
         assert!(steps.iter().all(|&s| s == 1), "{steps:?}");
