@@ -21,7 +21,7 @@ use winit::event_loop::{ActiveEventLoop, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{CursorGrabMode, Fullscreen, Window, WindowId};
 
-use super::fixed_steps::FixedSteps;
+use super::fixed_steps::{FixedSteps, MAX_CATCH_UP};
 use super::fly_camera::FlyCamera;
 use super::hud::{Hud, HudState};
 use super::log::EventLog;
@@ -510,12 +510,12 @@ impl App {
 
     fn frame(&mut self, event_loop: &ActiveEventLoop) {
         let now = Instant::now();
-        let elapsed = self
-            .last_frame
-            .map_or(0.0, |t| (now - t).as_secs_f64())
-            .min(0.25);
+        // The real time since the last frame, whole: the HUD reports it, and
+        // the fixed steps decide how much of it the world catches up on.
+        let elapsed = self.last_frame.map_or(0.0, |t| (now - t).as_secs_f64());
         self.last_frame = Some(now);
-        self.walk(elapsed as f32);
+        // After a stall the camera, like the world, does not leap ahead.
+        self.walk(elapsed.min(MAX_CATCH_UP) as f32);
         self.simulate(elapsed);
         // Report the camera when it has moved or turned, at most five times a second.
         if self.camera != self.camera_reported && self.camera_logged.elapsed().as_secs_f64() > 0.2 {

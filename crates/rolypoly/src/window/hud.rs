@@ -31,6 +31,17 @@ pub struct HudState {
 
 const ENERGY_SAMPLES: usize = 240;
 
+/// How long the HUD's rates take to follow a change (seconds).
+const SMOOTHING: f64 = 0.5;
+
+/// `average` moved towards `sample`, a frame of `elapsed` seconds later:
+/// smoothed over time, not frames, so that the numbers can be read at 60
+/// frames a second and still tell the truth within a frame or two at one.
+fn smooth(average: f64, sample: f64, elapsed: f64) -> f64 {
+    let weight = 1.0 - (-elapsed / SMOOTHING).exp();
+    average + weight * (sample - average)
+}
+
 impl HudState {
     pub fn new(seed: u64, balls: usize) -> HudState {
         HudState {
@@ -56,7 +67,7 @@ impl HudState {
     pub fn pace(&mut self, elapsed: f64, skipped: f64) {
         if elapsed > 0.0 {
             let pace = (1.0 - skipped / elapsed).clamp(0.0, 1.0);
-            self.pace = 0.9 * self.pace + 0.1 * pace;
+            self.pace = smooth(self.pace, pace, elapsed);
         }
     }
 
@@ -70,8 +81,7 @@ impl HudState {
     ) {
         self.frames += 1;
         if elapsed > 0.0 {
-            // A smoothed rate, so the number can be read.
-            self.frame_time = 0.9 * self.frame_time + 0.1 * elapsed;
+            self.frame_time = smooth(self.frame_time, elapsed, elapsed);
             self.fps = 1.0 / self.frame_time.max(1e-6);
         }
         self.balls_alive = world.balls().alive().iter().filter(|a| **a).count();
@@ -177,7 +187,7 @@ impl Hud {
                     }
                     if s.pace < 0.95 && !s.paused {
                         // The steps cannot keep up with real time.
-                        modes.push(format!("SLOW MOTION {:.0} %", 100.0 * s.pace));
+                        modes.push(format!("SLOW MOTION {}", percent(s.pace)));
                     }
                     if !modes.is_empty() {
                         ui.colored_label(egui::Color32::from_rgb(255, 200, 80), modes.join("  "));
@@ -281,4 +291,56 @@ fn energy_plot(ui: &mut egui::Ui, samples: &VecDeque<f32>) {
         egui::FontId::proportional(11.0),
         egui::Color32::WHITE,
     );
+}
+
+/// A share as a percentage with two significant digits: "35 %", "0.52 %".
+fn percent(share: f64) -> String {
+    let p = 100.0 * share;
+    let decimals = if p >= 10.0 {
+        0
+    } else if p >= 1.0 {
+        1
+    } else {
+        2
+    };
+    format!("{p:.decimals$} %")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slow_motion_keeps_two_digits_however_slow() {
+        assert_eq!(percent(0.35), "35 %");
+        assert_eq!(percent(0.042), "4.2 %");
+        assert_eq!(percent(0.0049), "0.49 %");
+    }
+
+    #[test]
+    fn pace_tells_the_truth_at_any_frame_rate() {
+        let dt = 1.0 / 120.0;
+        // Sixty frames a second, all simulated: real time.
+        let mut hud = HudState::new(1, 0);
+        (0..600).for_each(|_| hud.pace(1.0 / 60.0, 0.0));
+        assert!((hud.pace - 1.0).abs() < 1e-12, "{}", hud.pace);
+        // Frames of 1.7 s that simulate one step each: within three
+        // frames the HUD says under 1 %, not the share it began with.
+        (0..3).for_each(|_| hud.pace(1.7, 1.7 - dt));
+        assert!(hud.pace < 0.01, "{}", hud.pace);
+        // Back at sixty frames a second, within a second.
+        (0..60).for_each(|_| hud.pace(1.0 / 60.0, 0.0));
+        assert!(hud.pace > 0.85, "{}", hud.pace);
+    }
+
+    #[test]
+    fn the_frame_time_follows_slow_frames_at_once_and_fast_ones_smoothly() {
+        let mut average = 1.0 / 60.0;
+        average = smooth(average, 1.7, 1.7);
+        assert!((average - 1.7).abs() < 0.1, "{average}");
+        // One odd frame among many moves a 60 Hz reading by a little.
+        let mut average = 1.0 / 60.0;
+        average = smooth(average, 2.0 / 60.0, 2.0 / 60.0);
+        assert!(average < 1.1 / 60.0, "{average}");
+    }
 }
