@@ -76,6 +76,10 @@ pub struct BallInstance {
     _pad: f32,
 }
 
+// What the shader's layout and the figures above assume.
+const _: () = assert!(std::mem::size_of::<BallInstance>() == 32);
+const _: () = assert!(std::mem::size_of::<Instance>() == 96);
+
 impl BallInstance {
     const ATTRIBUTES: [wgpu::VertexAttribute; 2] =
         wgpu::vertex_attr_array![3 => Float32x4, 4 => Float32x3];
