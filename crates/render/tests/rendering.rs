@@ -169,6 +169,25 @@ fn blended_edge_share(img: &RgbaImage) -> (f64, usize) {
     (blended as f64 / edges.max(1) as f64, edges)
 }
 
+/// The blended share of strong edges (see [`blended_edge_share`]) in a
+/// 240 x 160 frame at 4x MSAA and at 1x, once both show enough edges of
+/// `what` to judge.
+fn blended_shares_at_4x_and_1x(
+    config: &WorldConfig,
+    view: &SceneView,
+    camera: &Camera,
+    what: &str,
+) -> (f64, f64) {
+    let (four, one) = default_and(|s| s.msaa = 1, config, view, camera, (240, 160));
+    let (share4, edges4) = blended_edge_share(&four);
+    let (share1, edges1) = blended_edge_share(&one);
+    assert!(
+        edges4 > 20 && edges1 > 20,
+        "no {what} in view ({edges4}, {edges1} edges)"
+    );
+    (share4, share1)
+}
+
 #[test]
 fn msaa_blends_silhouette_edges() {
     let mut config = WorldConfig::default();
@@ -181,14 +200,7 @@ fn msaa_blends_silhouette_edges() {
         target: Vec3::new(-2.2, 0.45, -1.2),
         fov_y_deg: 50.0,
     };
-    let (w, h) = (240, 160);
-    let (four, one) = default_and(|s| s.msaa = 1, &config, &view, &camera, (w, h));
-    let (share4, edges4) = blended_edge_share(&four);
-    let (share1, edges1) = blended_edge_share(&one);
-    assert!(
-        edges4 > 20 && edges1 > 20,
-        "no silhouette in view ({edges4}, {edges1} edges)"
-    );
+    let (share4, share1) = blended_shares_at_4x_and_1x(&config, &view, &camera, "silhouette");
     // (Some strong edges are texture and shading, which blend either way.)
     assert!(
         share4 > 0.25,
@@ -315,14 +327,7 @@ fn balls_are_exact_spheres_that_hide_each_other_where_they_meet() {
 fn msaa_smooths_the_outlines_of_balls() {
     let (config, mut view, camera) = empty_room_and_close_camera();
     view.balls = two_balls_that_meet();
-    let (w, h) = (240, 160);
-    let (four, one) = default_and(|s| s.msaa = 1, &config, &view, &camera, (w, h));
-    let (share4, edges4) = blended_edge_share(&four);
-    let (share1, edges1) = blended_edge_share(&one);
-    assert!(
-        edges4 > 20 && edges1 > 20,
-        "no outline ({edges4}, {edges1} edges)"
-    );
+    let (share4, share1) = blended_shares_at_4x_and_1x(&config, &view, &camera, "outline");
     assert!(
         share4 > 0.25 && share4 > 2.0 * share1,
         "4x {:.0}% vs 1x {:.0}% blended edge pixels",
