@@ -16,7 +16,7 @@
 
 use crate::contact::Pair;
 #[cfg(doc)]
-use crate::contact::Stage;
+use crate::contact::stages::Stage;
 use crate::room::Surface;
 
 /// Last step's normal impulses of ball pairs and ball-wall contacts, of

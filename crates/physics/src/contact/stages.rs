@@ -1,0 +1,252 @@
+//! The solver's two stages per step, predict and project (see the
+//! module above for what each does).
+
+use crate::balls::Balls;
+use crate::warm::{Held, WarmStart};
+
+use super::{Bodies, Contact, Contacts, Crowd, Pair, TOUCHING};
+
+/// Stage 1: speculative, non-penetrating velocities for the coming step.
+///
+/// A lone impact on a tumbler due within the step bounces here already, at
+/// its full approach speed: a tumbler's response to an impulse changes as it
+/// turns, and splitting one impact over two configurations could create
+/// energy.
+///
+/// With `warm` (last step's impulses and each slot's ball number) pairs and
+/// ball-wall contacts start from the impulse that held them last step; the
+/// impulses they end with are kept for [`solve_project`] to record.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_predict(
+    bodies: &mut Bodies,
+    contacts: &mut Contacts,
+    crowd: &mut Crowd,
+    iterations: usize,
+    dt: f64,
+    bounce_threshold: f64,
+    warm: Option<(&WarmStart, &[u32])>,
+) {
+    // Every ball within reach counts against a bounce, touching or not: a
+    // ball sent back by a tumbler may meet a neighbour it was leaving, and
+    // pressing it would make the bounce pump energy. Other contacts count
+    // once they touch within the step.
+    let touching =
+        |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
+    // Only a tumbler's contacts may bounce here, so only they ask the crowd.
+    let may_bounce = !contacts.others.is_empty();
+    crowd.forget_asked(bodies.balls.len());
+    if may_bounce {
+        crowd.gather(contacts, bodies.tumblers.len(), false, |_| true);
+    }
+    for c in contacts.walls.iter_mut() {
+        c.impulse = 0.0;
+        if may_bounce {
+            // Gravity's half step, which the wall does not share.
+            let kick = bodies.balls.velocity[c.ball as usize].dot(c.normal()) - c.approach;
+            if touching(c.gap, c.approach, kick) {
+                crowd.add_wall(c);
+            }
+        }
+    }
+    for c in contacts.others.iter_mut() {
+        bodies.prepare(c);
+        c.impulse = 0.0;
+        // Gravity's half step, which the contact's two sides may not share.
+        c.kick = bodies.normal_velocity(c) - c.approach;
+        if touching(c.gap, c.approach, c.kick) {
+            crowd.add(c);
+        }
+    }
+    for c in contacts.others.iter_mut() {
+        c.bounce =
+            c.approach < -bounce_threshold && c.gap + c.approach * dt <= 0.0 && crowd.lone(c);
+    }
+    // Pairs never bounce here, so all start warm. One lookup finds the
+    // project stage's start too.
+    contacts.start_rows(bodies.balls, |p| {
+        let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
+        let held = warm_pair(warm, p);
+        p.project_start = held[Stage::Project as usize];
+        Some((target, share(warm, held[Stage::Predict as usize])))
+    });
+    if let Some((warm, ids)) = warm {
+        warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Predict);
+    }
+    let closing = |gap: f64| if gap > 0.0 { -gap / dt } else { 0.0 };
+    let target = |c: &Contact| {
+        if c.bounce {
+            c.kick - c.restitution * c.approach
+        } else {
+            closing(c.gap)
+        }
+    };
+    let friction = bodies.wall_friction;
+    contacts.start_wall_rows(bodies.balls, |c| Some((closing(c.gap), friction)));
+    for _ in 0..iterations {
+        contacts.sweep_wall_rows(bodies.balls);
+        contacts.sweep_rows(bodies.balls);
+        contacts.sweep_tumblers(bodies, |c, bodies| bodies.solve_normal(c, target(c)));
+    }
+    contacts.keep_wall_impulses(|_| true);
+    // The project stage asks about the balls of contacts that pushed
+    // against a fast approach: only those may bounce.
+    let fast = |pushed: f64, approach: f64| pushed > 0.0 && approach < -bounce_threshold;
+    let crowd = &*crowd;
+    contacts.keep_predicted_impulses(|p: &mut Pair, impulse: f64| {
+        p.pushed = impulse > 0.0;
+        if fast(impulse, p.approach) {
+            crowd.will_ask(p.i);
+            crowd.will_ask(p.j);
+        }
+    });
+    for c in contacts.others.iter_mut() {
+        c.pushed = c.impulse;
+    }
+    for c in contacts.walls.iter_mut() {
+        c.pushed = c.impulse;
+        if fast(c.pushed, c.approach) {
+            crowd.will_ask(c.ball);
+        }
+    }
+}
+
+/// The two solver stages, each warm-started from its own impulses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Stage {
+    Predict,
+    Project,
+}
+
+impl Stage {
+    /// Whether the stage solves contact `pushed`/`bounce`; bouncing contacts
+    /// start cold, their impulse is of this impact alone.
+    fn warm_starts(self, pushed: f64, bounce: bool) -> bool {
+        !bounce && (self == Stage::Predict || pushed > 0.0)
+    }
+}
+
+/// Last step's impulses of pair `p` as kept, if there is a warm start.
+fn warm_pair(warm: Option<(&WarmStart, &[u32])>, p: &Pair) -> Held {
+    warm.map_or(Held::default(), |(warm, ids)| {
+        warm.pair(ids[p.i as usize], ids[p.j as usize])
+    })
+}
+
+/// The impulse to start from, given one kept (0 without a warm start).
+fn share(warm: Option<(&WarmStart, &[u32])>, impulse: f32) -> f64 {
+    warm.map_or(0.0, |(warm, _)| warm.share(impulse))
+}
+
+/// Starts ball-wall contacts from last step's impulses.
+fn warm_start_walls(
+    balls: &mut Balls,
+    contacts: &mut Contacts,
+    warm: &WarmStart,
+    ids: &[u32],
+    stage: Stage,
+) {
+    for c in contacts.walls.iter_mut() {
+        if !stage.warm_starts(c.pushed, c.bounce) {
+            continue;
+        }
+        let i = c.ball as usize;
+        let impulse = warm.share(warm.wall(ids[i], c.surface)[stage as usize]);
+        if impulse > 0.0 {
+            c.impulse = impulse;
+            balls.velocity[i] += c.normal() * (impulse * balls.inv_mass[i]);
+        }
+    }
+}
+
+/// Stage 2: contacts that pushed end bouncing or resting.
+///
+/// A lone impact between balls, or of a ball on a wall, bounces to the speed
+/// its restitution gives the approach measured before the step (so a pair
+/// obeys the 1-D formulas exactly); every other contact that pushed ends at
+/// rest. A ball that bounced off a wall while moving has spent its approach
+/// already: `hit_wall` marks those, and their contacts only stop.
+///
+/// Warm started from `warm` as the predict stage. The impulses of both
+/// stages are recorded into `record` for the next step's warm start.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_project(
+    bodies: &mut Bodies,
+    contacts: &mut Contacts,
+    crowd: &mut Crowd,
+    iterations: usize,
+    bounce_threshold: f64,
+    ball_restitution: f64,
+    hit_wall: &[bool],
+    warm: Option<(&WarmStart, &[u32])>,
+    record: (&mut WarmStart, &[u32]),
+) {
+    crowd.gather(contacts, bodies.tumblers.len(), true, |p| p.pushed);
+    for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
+        crowd.add_if_asked(c);
+    }
+    for c in contacts.walls.iter().filter(|c| c.pushed > 0.0) {
+        if crowd.asked(c.ball as usize) {
+            crowd.add_wall(c);
+        }
+    }
+    // A tumbler's contacts bounced in the predict stage already.
+    for c in contacts.others.iter_mut() {
+        c.bounce = false;
+        c.impulse = 0.0;
+        if c.pushed > 0.0 {
+            bodies.prepare(c);
+        }
+    }
+    for c in contacts.walls.iter_mut() {
+        c.bounce = c.pushed > 0.0
+            && c.approach < -bounce_threshold
+            && !hit_wall[c.ball as usize]
+            && crowd.lone_wall(c);
+        c.impulse = 0.0;
+    }
+    // Only the pairs that pushed take part.
+    // A bouncing pair starts cold: its impulse is of this impact alone.
+    let crowd = &*crowd;
+    contacts.start_rows(bodies.balls, |p| {
+        p.pushed.then(|| {
+            let bounce = p.approach < -bounce_threshold
+                && !hit_wall[p.i as usize]
+                && !hit_wall[p.j as usize]
+                && crowd.lone_pair(p);
+            if bounce {
+                (-ball_restitution * p.approach, 0.0)
+            } else {
+                (0.0, share(warm, p.project_start))
+            }
+        })
+    });
+    if let Some((warm, ids)) = warm {
+        warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Project);
+    }
+    // Friction acted in the predict stage; here contacts only end bouncing
+    // or at rest.
+    let restitution = bodies.wall_restitution;
+    contacts.start_wall_rows(bodies.balls, |c| {
+        let target = if c.bounce {
+            -restitution * c.approach
+        } else {
+            0.0
+        };
+        (c.pushed > 0.0).then_some((target, 0.0))
+    });
+    for _ in 0..iterations {
+        contacts.sweep_wall_rows(bodies.balls);
+        contacts.sweep_rows(bodies.balls);
+        contacts.sweep_tumblers(bodies, |c, bodies| {
+            if c.pushed > 0.0 {
+                bodies.solve_normal(c, 0.0);
+            }
+        });
+    }
+    let (warm_next, ids) = record;
+    contacts.record_row_impulses((&mut *warm_next, ids));
+    contacts.keep_wall_impulses(|c| c.pushed > 0.0);
+    for c in &contacts.walls {
+        warm_next.record_wall(c.ball as usize, c.surface, [c.pushed, c.impulse]);
+    }
+}

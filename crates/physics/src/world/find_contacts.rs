@@ -1,0 +1,256 @@
+//! Step 1: every contact that may act during the coming step, found at
+//! its start. Speculative: a contact is kept if its gap could close
+//! within the step, so that nothing tunnels into anything.
+
+use crate::balls::PARALLEL_BALLS;
+use crate::contact::{BodyRef, Contact, Pair, WallContact};
+use crate::room::Surface;
+use glam::DVec3;
+use rayon::prelude::*;
+
+use super::{SolverParts, TOUCH_SLOP, World};
+
+impl World {
+    /// All contacts that may act during the coming step.
+    pub(super) fn collect_contacts(&mut self, dt: f64) {
+        let balls = &self.balls;
+        let room = &self.room;
+        let cfg = &self.config;
+        // A contact is kept if its gap could close within the step; speculative
+        // reach is capped at one ball radius (the grid's cell allows for that).
+        let reach_cap = cfg.balls.radius;
+        let contacts = &mut self.contacts;
+
+        // Each ball's share of the pair test below: its radius and how far
+        // it could fly, so that resting balls look no further than touching;
+        // widened by more than `f32` rounds off in a room of any size.
+        let (spheres, speed) = (&mut self.pair_spheres, &mut self.speed);
+        speed.clear();
+        speed.extend(balls.velocity.iter().map(|v| v.length()));
+        spheres.clear();
+        spheres.extend((0..balls.len()).map(|i| {
+            let p = balls.position[i];
+            let reach = balls.radius[i] + (2.0 * speed[i] * dt).min(reach_cap) + TOUCH_SLOP;
+            let rounding = 1e-6 * (1.0 + p.abs().max_element());
+            p.as_vec3().extend((reach + rounding) as f32)
+        }));
+        let (spheres, speed) = (&self.pair_spheres, &self.speed);
+        let grid = &self.grid;
+        contacts.reset(grid.layer_count());
+        grid.layer_slots(&mut contacts.layers);
+        let find_pairs = |(z, band): (usize, &mut Vec<Pair>)| {
+            grid.for_each_close_pair_in_layer(spheres, z, |i, j| {
+                let d = balls.position[i] - balls.position[j];
+                let dist = d.length();
+                let gap = dist - balls.radius[i] - balls.radius[j];
+                let relative = balls.velocity[i] - balls.velocity[j];
+                // Either ball may bounce off a wall within the step and come
+                // back at up to its speed: allow for that (which covers their
+                // relative speed too).
+                let closing = 2.0 * (speed[i] + speed[j]) * dt;
+                if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
+                    // Gravity moves both alike, so within the step they close
+                    // along a straight line: take the normal at the moment of impact.
+                    let reach = balls.radius[i] + balls.radius[j];
+                    let (n, gap) = impact_normal(d, relative, reach, dt).unwrap_or((d / dist, gap));
+                    // Approach speed before anything moves: what restitution acts on.
+                    band.push(Pair::new(i, j, n, gap, relative.dot(n)));
+                }
+            });
+        };
+        // Each layer fills its own band, so the pairs come out in the same
+        // order on any number of threads.
+        if balls.len() >= PARALLEL_BALLS {
+            contacts
+                .bands
+                .par_iter_mut()
+                .enumerate()
+                .for_each(find_pairs);
+        } else {
+            contacts.bands.iter_mut().enumerate().for_each(find_pairs);
+        }
+        contacts.count_pairs();
+
+        // Balls resting on or touching a wall. A lone ball's impacts are
+        // found exactly while moving (see `move_balls`); a ball pressed by
+        // others gets a speculative contact with every wall it could reach
+        // in the step, so that it stops there with them instead of bouncing
+        // back into them (which would sink balls into each other).
+        let partners = &mut self.ball_partners;
+        partners.clear();
+        partners.resize(balls.len(), 0);
+        contacts.sweep_slots(partners, &|p, partners, first| {
+            for k in [p.i as usize - first, p.j as usize - first] {
+                partners[k] = partners[k].saturating_add(1);
+            }
+        });
+        let partners = &self.ball_partners;
+        let touch_walls = |i: usize, into: &mut Vec<WallContact>| {
+            let crowded = partners[i] > 0;
+            for s in Surface::ALL {
+                let gap = room.distance(s, balls.position[i]) - balls.radius[i];
+                let n = s.inward_normal();
+                // Others may push it as far as it could fly: allow for both.
+                let reach = if crowded {
+                    (-balls.velocity[i].dot(n) * dt).max(reach_cap)
+                } else {
+                    0.0
+                };
+                if gap <= reach + TOUCH_SLOP {
+                    let gap = if gap > TOUCH_SLOP { gap } else { gap.min(0.0) };
+                    // Its approach speed before anything moves: what
+                    // restitution acts on.
+                    let approach = balls.velocity[i].dot(n);
+                    into.push(WallContact::new(i, s, gap, approach));
+                }
+            }
+        };
+        // Layer by layer, each into its own list, then in layer order: the
+        // same contacts in the same order on any number of threads.
+        let layers = &contacts.layers;
+        let by_layer = &mut self.wall_contacts_by_layer;
+        by_layer.resize_with(layers.len() - 1, Vec::new);
+        let fill = |(z, into): (usize, &mut Vec<WallContact>)| {
+            into.clear();
+            (layers[z]..layers[z + 1]).for_each(|i| touch_walls(i, into));
+        };
+        if balls.len() >= PARALLEL_BALLS {
+            by_layer.par_iter_mut().enumerate().for_each(fill);
+        } else {
+            by_layer.iter_mut().enumerate().for_each(fill);
+        }
+        for layer in by_layer.iter() {
+            contacts.walls.extend_from_slice(layer);
+        }
+
+        // Balls against tumblers: the grid narrows to balls near the bounding
+        // sphere, then the six spheres give the contact (P7).
+        let shape = &self.shape;
+        for (ti, t) in self.tumblers.iter().enumerate() {
+            let centre = t.center + t.orientation * DVec3::new(0.0, shape.bound_height, 0.0);
+            let speed = t.point_velocity(centre).length()
+                + t.angular_velocity.length() * shape.bound_radius;
+            let reach =
+                shape.bound_radius + cfg.balls.radius + (speed * dt).min(reach_cap) + reach_cap;
+            let grid = &self.grid;
+            grid.for_each_in_box(
+                centre - DVec3::splat(reach),
+                centre + DVec3::splat(reach),
+                |bi| {
+                    if balls.position[bi].distance(centre) > reach {
+                        return;
+                    }
+                    for (si, s) in shape.spheres.iter().enumerate() {
+                        let c = t.sphere_center(shape, si);
+                        let d = balls.position[bi] - c;
+                        let dist = d.length();
+                        let gap = dist - s.radius - balls.radius[bi];
+                        let closing = (balls.velocity[bi] - t.point_velocity(c)).length() * dt;
+                        if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
+                            let n = d / dist;
+                            contacts.others.push(Contact::new(
+                                BodyRef::Ball(bi),
+                                BodyRef::Tumbler(ti, si),
+                                n,
+                                c + n * s.radius,
+                                gap,
+                                cfg.tumblers.restitution,
+                            ));
+                        }
+                    }
+                },
+            );
+        }
+
+        // Tumblers against each other and against the walls (the floor holds
+        // the round bottom exactly; see `tumbler`).
+        let n_tumblers = self.tumblers.len();
+        for a in 0..n_tumblers {
+            let ta = &self.tumblers[a];
+            for b in a + 1..n_tumblers {
+                let tb = &self.tumblers[b];
+                let ca = ta.center + ta.orientation * DVec3::new(0.0, shape.bound_height, 0.0);
+                let cb = tb.center + tb.orientation * DVec3::new(0.0, shape.bound_height, 0.0);
+                if ca.distance(cb) > 2.0 * shape.bound_radius + 2.0 * reach_cap {
+                    continue;
+                }
+                for (si, s) in shape.spheres.iter().enumerate() {
+                    let pa = ta.sphere_center(shape, si);
+                    for (sj, s2) in shape.spheres.iter().enumerate() {
+                        let pb = tb.sphere_center(shape, sj);
+                        let d = pa - pb;
+                        let dist = d.length();
+                        let gap = dist - s.radius - s2.radius;
+                        let closing = (ta.point_velocity(pa) - tb.point_velocity(pb)).length() * dt;
+                        if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
+                            let n = d / dist;
+                            contacts.others.push(Contact::new(
+                                BodyRef::Tumbler(a, si),
+                                BodyRef::Tumbler(b, sj),
+                                n,
+                                pb + n * s2.radius,
+                                gap,
+                                cfg.tumblers.restitution,
+                            ));
+                        }
+                    }
+                }
+            }
+            for (si, s) in shape.spheres.iter().enumerate() {
+                let c = ta.sphere_center(shape, si);
+                let speed = ta.point_velocity(c).length() * dt;
+                // The floor holds the round bottom exactly; it meets the
+                // other spheres only when the tumbler is knocked far over.
+                let walls = if si == 0 {
+                    &Surface::ALL[1..]
+                } else {
+                    &Surface::ALL[..]
+                };
+                for wall in walls {
+                    let gap = room.distance(*wall, c) - s.radius;
+                    if gap < speed.min(reach_cap) + TOUCH_SLOP {
+                        let n = wall.inward_normal();
+                        contacts.others.push(Contact::new(
+                            BodyRef::Tumbler(a, si),
+                            BodyRef::Wall(*wall),
+                            n,
+                            c - n * s.radius,
+                            gap,
+                            cfg.tumblers.restitution,
+                        ));
+                    }
+                }
+            }
+        }
+
+        // Approach speeds before anything moves: what restitution acts on
+        // (pairs and walls have theirs from when they were found).
+        let SolverParts {
+            bodies, contacts, ..
+        } = self.solver_parts(false);
+        for c in contacts.others.iter_mut() {
+            c.approach = bodies.normal_velocity(c);
+        }
+    }
+}
+
+/// For two spheres whose centres differ by `d + v t`, the line of centres at
+/// first touch within `horizon`, and the gap left along it at t = 0.
+fn impact_normal(d: DVec3, v: DVec3, reach: f64, horizon: f64) -> Option<(DVec3, f64)> {
+    let a = v.length_squared();
+    let b = d.dot(v);
+    let c = d.length_squared() - reach * reach;
+    if c <= 0.0 || b >= 0.0 || a == 0.0 {
+        return None;
+    }
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let t = c / (-b + disc.sqrt());
+    if t > horizon {
+        return None;
+    }
+    let n = (d + v * t).normalize();
+    Some((n, -v.dot(n) * t))
+}

@@ -1,0 +1,143 @@
+//! Step 4: the bodies move. Balls fly along exact parabolas and bounce
+//! exactly off the walls; tumblers integrate their grounded rolling and
+//! sliding equations.
+
+use crate::balls::Tint;
+use crate::ccd::first_impact;
+use crate::events::{Event, EventKind};
+use crate::room::Surface;
+use crate::tumbler::GroundedParams;
+use glam::DVec3;
+
+use super::World;
+
+impl World {
+    /// Rolling resistance: a ball pressed on a surface loses rolling speed
+    /// in proportion to the normal impulse, until it stops.
+    pub(super) fn apply_rolling_resistance(&mut self) {
+        let coefficient = self.config.room.rolling_resistance;
+        for c in &self.contacts.walls {
+            if c.pushed <= 0.0 {
+                continue;
+            }
+            let (i, n) = (c.ball as usize, c.normal());
+            let v = self.balls.velocity[i];
+            let tangential = v - v.dot(n) * n;
+            let speed = tangential.length();
+            let loss = coefficient * c.pushed * self.balls.inv_mass[i];
+            let keep = if speed > loss {
+                1.0 - loss / speed
+            } else {
+                0.0
+            };
+            self.balls.velocity[i] = v.dot(n) * n + tangential * keep;
+            self.balls.spin[i] *= keep;
+        }
+    }
+
+    /// Moves every ball along its parabola, bouncing exactly off the walls.
+    pub(super) fn move_balls(&mut self, dt: f64, gravity: DVec3) {
+        let room = self.room;
+        let solver = &self.config.solver;
+        let (e, mu) = (self.config.room.restitution, self.config.room.friction);
+        for i in 0..self.balls.len() {
+            self.hit_wall[i] = false;
+            if !self.balls.alive[i] {
+                continue;
+            }
+            let r = self.balls.radius[i];
+            if self.ball_partners[i] > 0 {
+                // Its walls are in the solver already (see `collect_contacts`):
+                // the step-average velocity carries it along its parabola.
+                let v = self.balls.velocity[i];
+                self.balls.position[i] = room.clamp_sphere(self.balls.position[i] + v * dt, r);
+                self.balls.velocity[i] = v + 0.5 * dt * gravity;
+                continue;
+            }
+            let m = self.balls.mass[i];
+            let inertia = self.balls.inertia(i);
+            let mut x = self.balls.position[i];
+            // Instantaneous velocity at the start of the step.
+            let mut u = self.balls.velocity[i] - 0.5 * dt * gravity;
+            let mut spin = self.balls.spin[i];
+            let mut g = gravity;
+            let mut left = dt;
+            for _ in 0..8 {
+                let mut first: Option<(f64, Surface)> = None;
+                for s in Surface::ALL {
+                    let n = s.inward_normal();
+                    let d0 = room.distance(s, x) - r;
+                    if let Some(t) = first_impact(d0, n.dot(u), n.dot(g), left) {
+                        if first.is_none_or(|(best, _)| t < best) {
+                            first = Some((t, s));
+                        }
+                    }
+                }
+                let Some((t, s)) = first else {
+                    x += u * left + 0.5 * g * left * left;
+                    u += g * left;
+                    break;
+                };
+                x += u * t + 0.5 * g * t * t;
+                u += g * t;
+                left -= t;
+                let n = s.inward_normal();
+                // Sit exactly on the wall.
+                x += n * (r - room.distance(s, x));
+                let speed = -n.dot(u);
+                self.hit_wall[i] = true;
+                let normal_impulse = if speed > solver.bounce_threshold {
+                    u += (1.0 + e) * speed * n;
+                    m * (1.0 + e) * speed
+                } else {
+                    u += speed * n;
+                    if n.dot(g) < 0.0 {
+                        // Resting on it: the wall carries gravity from here on.
+                        g -= n.dot(g) * n;
+                    }
+                    m * speed
+                };
+                // Coulomb friction at the contact point, at most enough to roll.
+                let arm = -r * n;
+                let slip = u + spin.cross(arm);
+                let slip = slip - slip.dot(n) * n;
+                let slip_speed = slip.length();
+                if slip_speed > 0.0 {
+                    let j = (mu * normal_impulse).min(slip_speed / (1.0 / m + r * r / inertia));
+                    let impulse = -slip / slip_speed * j;
+                    u += impulse / m;
+                    spin += arm.cross(impulse) / inertia;
+                }
+                if speed > solver.event_threshold {
+                    self.balls.tint[i] = Tint::Surface(s);
+                    self.events.push(Event {
+                        kind: EventKind::BallSurface {
+                            ball: i,
+                            surface: s,
+                        },
+                        point: x - r * n,
+                        normal: n,
+                        speed,
+                    });
+                }
+            }
+            self.balls.position[i] = room.clamp_sphere(x, r);
+            self.balls.velocity[i] = u;
+            self.balls.spin[i] = spin;
+        }
+    }
+
+    pub(super) fn move_tumblers(&mut self, dt: f64) {
+        let params = GroundedParams {
+            shape: &self.shape,
+            gravity: self.config.gravity,
+            friction: self.config.tumblers.floor_friction,
+            damping: self.config.tumblers.damping,
+            grab: &self.config.grab,
+        };
+        for t in &mut self.tumblers {
+            t.choose_mode(&params);
+            t.integrate(&params, dt);
+        }
+    }
+}

@@ -1,0 +1,92 @@
+//! Where the balls start: random free spots, drawn from the world's
+//! random sequence.
+
+use crate::balls::Tint;
+use glam::DVec3;
+
+use super::{BuildError, World};
+
+impl World {
+    /// Places every ball at a random free spot with a random velocity.
+    ///
+    /// Spots come from a jittered lattice whose spacing leaves each ball
+    /// room to move: shuffled lattice sites give random, non-overlapping
+    /// positions in time linear in the ball count.
+    pub(super) fn spawn_balls(&mut self) -> Result<(), BuildError> {
+        let n = self.balls.len();
+        if n == 0 {
+            return Ok(());
+        }
+        let r = self.config.balls.radius;
+        let fill = self.config.balls.start_fill;
+        if !(fill > 0.0 && fill <= 1.0) {
+            return Err(BuildError(format!(
+                "balls.start_fill = {fill} is out of range: allowed > 0 and <= 1"
+            )));
+        }
+        let lo = self.room.min + DVec3::splat(r);
+        let mut top = self.room.max;
+        top.y = self.room.min.y + fill * (self.room.max.y - self.room.min.y);
+        let hi = top - DVec3::splat(r);
+        let span = hi - lo;
+        let within = if fill < 1.0 {
+            format!("the lowest {fill} of the room's height (balls.start_fill)")
+        } else {
+            "the room".to_string()
+        };
+        if span.min_element() < 0.0 {
+            return Err(BuildError(format!(
+                "balls of radius {r} do not fit in {within}"
+            )));
+        }
+        // Aim for about four sites per ball, never closer than 2.1 radii.
+        let volume = span.x.max(0.0) * span.y.max(0.0) * span.z.max(0.0);
+        let spacing = (volume / (4.0 * n as f64)).cbrt().max(2.1 * r);
+        let dims = [
+            (span.x / spacing).floor() as usize + 1,
+            (span.y / spacing).floor() as usize + 1,
+            (span.z / spacing).floor() as usize + 1,
+        ];
+        let jitter = 0.5 * (spacing - 2.05 * r).max(0.0);
+        let clearance = self.shape.bound_radius + r + 0.5 * spacing;
+        let mut sites = Vec::with_capacity(dims[0] * dims[1] * dims[2]);
+        for z in 0..dims[2] {
+            for y in 0..dims[1] {
+                for x in 0..dims[0] {
+                    let p = lo + DVec3::new(x as f64, y as f64, z as f64) * spacing;
+                    let clear = self.tumblers.iter().all(|t| {
+                        let c = t.center
+                            + t.orientation * DVec3::new(0.0, self.shape.bound_height, 0.0);
+                        p.distance(c) > clearance
+                    });
+                    if clear && p.cmple(hi + DVec3::splat(1e-9)).all() {
+                        sites.push(p);
+                    }
+                }
+            }
+        }
+        if sites.len() < n {
+            return Err(BuildError(format!(
+                "{n} balls of radius {r} do not fit in {within} beside the tumblers (room for {})",
+                sites.len()
+            )));
+        }
+        let (min_speed, max_speed) = (self.config.balls.speed_min, self.config.balls.speed_max);
+        for i in 0..n {
+            // Partial Fisher-Yates: site i is a uniform pick among the rest.
+            let k = i + (self.rng.next_u64() % (sites.len() - i) as u64) as usize;
+            sites.swap(i, k);
+            let offset = DVec3::new(
+                self.rng.range(-jitter, jitter),
+                self.rng.range(-jitter, jitter),
+                self.rng.range(-jitter, jitter),
+            );
+            let p = (sites[i] + offset).clamp(lo, hi);
+            let v = self.rng.direction() * self.rng.range(min_speed, max_speed);
+            self.balls.set(i, p, v);
+            self.balls.alive[i] = true;
+            self.balls.tint[i] = Tint::White;
+        }
+        Ok(())
+    }
+}
