@@ -1,0 +1,752 @@
+//! Scene files (SPEC S6, A4): the built-in default scene overridden by a
+//! user's TOML file, then range-checked.
+//!
+//! A scene is the physics ([`WorldConfig`]), the particle effects
+//! ([`EffectsConfig`], the file's `[effects]`) and the ceiling light
+//! ([`LightConfig`], the file's `[light]`). A file may set any subset of
+//! keys; everything it leaves out keeps the value of [`WorldConfig::default`],
+//! [`EffectsConfig::default`] or [`LightConfig::default`]. The file is parsed
+//! into a partial schema whose tables all reject unknown keys, so a typo is an
+//! error instead of a silently ignored setting. Every value read from the file keeps its source
+//! span, so a range error can point at the line where the value was written.
+//!
+//! The parts, a file each: `file`, the schema a file is parsed into;
+//! `overlay`, which lays it over the defaults and notes the line of each
+//! key; `checks`, the ranges every value must lie in.
+
+use std::collections::HashMap;
+use std::fmt;
+use std::path::Path;
+
+use rolypoly_fx::EffectsConfig;
+use rolypoly_physics::WorldConfig;
+use rolypoly_render::LightConfig;
+
+mod checks;
+mod file;
+mod overlay;
+
+use checks::{Checker, Sources};
+use file::FileScene;
+use overlay::Overlay;
+
+/// Where the configuration comes from when no scene file is given.
+pub const BUILTIN_ORIGIN: &str = "built-in default scene";
+
+/// Largest number of balls a scene may ask for.
+pub const MAX_BALLS: usize = 1_000_000;
+
+/// The number of spheres in a tumbler's compound shape (SPEC P6).
+pub const TUMBLER_SPHERES: usize = 6;
+
+/// Smallest and largest particle capacity a scene may ask for.
+pub const PARTICLE_CAPACITY: (usize, usize) = (16, 1_000_000);
+
+/// Names of the room's surfaces, in the order of `RoomConfig::colors`.
+const SURFACE_NAMES: [&str; 6] = ["floor", "ceiling", "left", "right", "back", "front"];
+
+/// Where a value came from: a file (with the line, when known) or a
+/// command-line option.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Location {
+    pub origin: String,
+    pub line: Option<usize>,
+}
+
+impl fmt::Display for Location {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.line {
+            Some(line) => write!(f, "{}:{line}", self.origin),
+            None => f.write_str(&self.origin),
+        }
+    }
+}
+
+/// Why a scene could not be loaded. Every variant names where the problem is.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file could not be read (missing, a directory, no permission...).
+    #[error("cannot read scene file `{path}`")]
+    Read {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// Malformed TOML, an unknown key or a value of the wrong type.
+    #[error("{at}: {message}")]
+    Syntax { at: Location, message: String },
+    /// A value outside the range the simulation can handle.
+    #[error("{at}: {key} = {value} is out of range: allowed {allowed}")]
+    OutOfRange {
+        at: Location,
+        key: String,
+        value: String,
+        allowed: String,
+    },
+    /// A structural rule that is not a numeric range (list lengths and such).
+    #[error("{at}: {key}: {problem}")]
+    Invalid {
+        at: Location,
+        key: String,
+        problem: String,
+    },
+}
+
+/// A loaded scene: the physics, the particle effects and the light.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scene {
+    pub world: WorldConfig,
+    pub effects: EffectsConfig,
+    pub light: LightConfig,
+}
+
+/// Settings given on the command line; they win over the scene file and are
+/// range-checked with the same rules.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Overrides {
+    /// `balls.count`, from `--balls`.
+    pub balls: Option<usize>,
+    /// `gravity`, from `--gravity`.
+    pub gravity: Option<f64>,
+}
+
+/// Loads the scene at `path` over the default scene, or the default scene
+/// itself when `path` is `None`, and checks every value.
+pub fn load_scene(path: Option<&Path>) -> Result<Scene, SceneError> {
+    load_scene_with(path, &Overrides::default())
+}
+
+/// [`load_scene`], then applies command-line overrides and checks the result.
+pub fn load_scene_with(path: Option<&Path>, overrides: &Overrides) -> Result<Scene, SceneError> {
+    match path {
+        None => build(None, BUILTIN_ORIGIN, overrides),
+        Some(path) => {
+            let origin = path.display().to_string();
+            let source = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
+                path: origin.clone(),
+                source,
+            })?;
+            build(Some(&source), &origin, overrides)
+        }
+    }
+}
+
+/// Parses scene text over the default scene and checks every value;
+/// `origin` names the text in error messages (usually the file name).
+pub fn parse_scene(source: &str, origin: &str) -> Result<Scene, SceneError> {
+    parse_scene_with(source, origin, &Overrides::default())
+}
+
+/// [`parse_scene`], then applies command-line overrides and checks the result.
+pub fn parse_scene_with(
+    source: &str,
+    origin: &str,
+    overrides: &Overrides,
+) -> Result<Scene, SceneError> {
+    build(Some(source), origin, overrides)
+}
+
+/// Checks a scene that did not come from a file (for instance one edited at
+/// run time) against the same rules as a scene file.
+pub fn validate(scene: &Scene) -> Result<(), SceneError> {
+    let sources = Sources {
+        origin: BUILTIN_ORIGIN.to_owned(),
+        from_file: false,
+        lines: HashMap::new(),
+        options: HashMap::new(),
+    };
+    Checker {
+        scene,
+        sources: &sources,
+    }
+    .check()
+}
+
+fn build(source: Option<&str>, origin: &str, overrides: &Overrides) -> Result<Scene, SceneError> {
+    let mut scene = Scene::default();
+    let mut sources = Sources {
+        origin: origin.to_owned(),
+        from_file: source.is_some(),
+        lines: HashMap::new(),
+        options: HashMap::new(),
+    };
+    if let Some(source) = source {
+        let file: FileScene =
+            toml::from_str(source).map_err(|e| syntax_error(&e, source, origin))?;
+        let mut overlay = Overlay {
+            source,
+            origin,
+            lines: HashMap::new(),
+        };
+        overlay.apply(file, &mut scene)?;
+        sources.lines = overlay.lines;
+    }
+    if let Some(count) = overrides.balls {
+        scene.world.balls.count = count;
+        sources
+            .options
+            .insert("balls.count".into(), "--balls".into());
+    }
+    if let Some(gravity) = overrides.gravity {
+        scene.world.gravity = gravity;
+        sources.options.insert("gravity".into(), "--gravity".into());
+    }
+    Checker {
+        scene: &scene,
+        sources: &sources,
+    }
+    .check()?;
+    Ok(scene)
+}
+
+/// 1-based line of a byte offset.
+fn line_of(source: &str, offset: usize) -> usize {
+    let end = offset.min(source.len());
+    source.as_bytes()[..end]
+        .iter()
+        .filter(|&&b| b == b'\n')
+        .count()
+        + 1
+}
+
+fn syntax_error(error: &toml::de::Error, source: &str, origin: &str) -> SceneError {
+    let line = error.span().map(|span| line_of(source, span.start));
+    // toml's messages are one line per fact; keep them on one line.
+    let message = error
+        .message()
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join("; ")
+        .replacen("unknown field", "unknown key", 1)
+        .replacen("missing field", "missing key", 1);
+    SceneError::Syntax {
+        at: Location {
+            origin: origin.to_owned(),
+            line,
+        },
+        message: qualify_unknown_key(message, source, line),
+    }
+}
+
+/// Turns "unknown key `colour`" into "unknown key `balls.colour`" when the
+/// offending line is a plain `key = value` under a table header, so the
+/// user sees the full path of what was not understood.
+fn qualify_unknown_key(message: String, source: &str, line: Option<usize>) -> String {
+    let Some(rest) = message.strip_prefix("unknown key `") else {
+        return message;
+    };
+    let Some((key, tail)) = rest.split_once('`') else {
+        return message;
+    };
+    match line.and_then(|line| table_of_key(source, line, key)) {
+        Some(table) if !table.is_empty() => format!("unknown key `{table}.{key}`{tail}"),
+        _ => message,
+    }
+}
+
+/// The table header in effect for `key = ...` on 1-based `line`, or `None`
+/// when that line is not such an assignment. An empty string is the top level.
+fn table_of_key(source: &str, line: usize, key: &str) -> Option<String> {
+    let lines: Vec<&str> = source.lines().collect();
+    let text = lines.get(line.checked_sub(1)?)?.trim_start();
+    if !text.strip_prefix(key)?.trim_start().starts_with('=') {
+        return None;
+    }
+    let header = lines[..line - 1].iter().rev().find_map(|l| table_header(l));
+    Some(header.unwrap_or_default())
+}
+
+/// The dotted name of a `[table]` or `[[array]]` header line.
+fn table_header(line: &str) -> Option<String> {
+    let line = line.split('#').next()?.trim();
+    let inner = line
+        .strip_prefix("[[")
+        .and_then(|l| l.strip_suffix("]]"))
+        .or_else(|| line.strip_prefix('[').and_then(|l| l.strip_suffix(']')))?
+        .trim();
+    // Rejects lines of a multi-line array such as `[0.1, 0.2, 0.3],`.
+    let is_name = inner.starts_with(|c: char| c.is_ascii_alphabetic() || c == '"' || c == '\'')
+        && inner
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | ' ' | '"' | '\''));
+    is_name.then(|| {
+        inner
+            .split('.')
+            .map(str::trim)
+            .collect::<Vec<_>>()
+            .join(".")
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+    use rolypoly_physics::TumblerPlacement;
+
+    const DEFAULT_SCENE: &str = include_str!("../../../../scenes/default.toml");
+
+    fn parse(source: &str) -> Result<Scene, SceneError> {
+        parse_scene(source, "test.toml")
+    }
+
+    fn error_text(source: &str) -> String {
+        match parse(source) {
+            Ok(_) => panic!("expected an error for:\n{source}"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn shipped_default_file_equals_builtin_default() {
+        let parsed = parse_scene(DEFAULT_SCENE, "scenes/default.toml").unwrap();
+        assert_eq!(
+            parsed.world,
+            WorldConfig::default(),
+            "scenes/default.toml must spell out WorldConfig::default() exactly"
+        );
+        assert_eq!(
+            parsed.effects,
+            EffectsConfig::default(),
+            "scenes/default.toml must spell out EffectsConfig::default() exactly"
+        );
+        assert_eq!(
+            parsed.light,
+            LightConfig::default(),
+            "scenes/default.toml must spell out LightConfig::default() exactly"
+        );
+        assert_eq!(parsed, Scene::default());
+    }
+
+    #[test]
+    fn builtin_default_is_valid() {
+        validate(&Scene::default()).unwrap();
+        assert_eq!(load_scene(None).unwrap(), Scene::default());
+    }
+
+    #[test]
+    fn empty_file_is_the_default() {
+        assert_eq!(parse("").unwrap(), Scene::default());
+        assert_eq!(parse("# nothing\n").unwrap(), Scene::default());
+    }
+
+    #[test]
+    fn one_key_changes_only_that_key() {
+        let parsed = parse("[balls]\nrestitution = 0.5\n").unwrap();
+        let mut expected = Scene::default();
+        expected.world.balls.restitution = 0.5;
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("gravity = 3.5").unwrap();
+        let mut expected = Scene::default();
+        expected.world.gravity = 3.5;
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[room.colors]\nleft = [0, 0, 1]\n").unwrap();
+        let mut expected = Scene::default();
+        expected.world.room.colors[2] = [0.0, 0.0, 1.0];
+        assert_eq!(parsed, expected);
+    }
+
+    #[test]
+    fn one_effects_key_changes_only_that_key() {
+        let parsed = parse("[effects.wall_hit]\nrate = 500\n").unwrap();
+        let mut expected = Scene::default();
+        expected.effects.wall_hit.rate = 500.0;
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[effects]\ncapacity = 100\n").unwrap();
+        let mut expected = Scene::default();
+        expected.effects.capacity = 100;
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[effects.ball_hit]\nburst_size = 0.25\n").unwrap();
+        let mut expected = Scene::default();
+        expected.effects.ball_hit.burst_size = 0.25;
+        assert_eq!(parsed, expected);
+    }
+
+    #[test]
+    fn one_light_key_changes_only_that_key() {
+        let parsed = parse("[light]\nintensity = 5\n").unwrap();
+        let mut expected = Scene::default();
+        expected.light.intensity = 5.0;
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[light]\ncolor = [0.5, 0.25, 1]\n").unwrap();
+        let mut expected = Scene::default();
+        expected.light.color = [0.5, 0.25, 1.0];
+        assert_eq!(parsed, expected);
+
+        let parsed = parse("[light]\ndrop = 0\n").unwrap();
+        let mut expected = Scene::default();
+        expected.light.drop = 0.0;
+        assert_eq!(parsed, expected);
+    }
+
+    #[test]
+    fn light_out_of_range_names_line_key_and_range() {
+        let text = error_text("[light]\nambient = 0.1\nintensity = 150\n");
+        assert_eq!(
+            text,
+            "test.toml:3: light.intensity = 150 is out of range: allowed 0 ..= 100"
+        );
+
+        let text = error_text("[light]\nambient = 1.5\n");
+        assert_eq!(
+            text,
+            "test.toml:2: light.ambient = 1.5 is out of range: allowed 0 ..= 1"
+        );
+
+        let text = error_text("[light]\nbulb_radius = 0\n");
+        assert_eq!(
+            text,
+            "test.toml:2: light.bulb_radius = 0 is out of range: allowed > 0 and <= 1"
+        );
+
+        let text = error_text("[light]\ncolor = [1, 1.2, 1]\n");
+        assert_eq!(
+            text,
+            "test.toml:2: light.color = [1, 1.2, 1] is out of range: \
+             allowed each component 0 ..= 1"
+        );
+
+        let text = error_text("[light]\ndrop = -0.1\n");
+        assert_eq!(
+            text,
+            "test.toml:2: light.drop = -0.1 is out of range: allowed 0 ..= 3.91 \
+             (at most the room's height minus light.bulb_radius)"
+        );
+
+        // The bulb must stay inside the room: drop depends on the room's
+        // height and the bulb's radius.
+        let text = error_text("[light]\nbulb_radius = 0.5\ndrop = 3.6\n");
+        assert_eq!(
+            text,
+            "test.toml:3: light.drop = 3.6 is out of range: allowed 0 ..= 3.5 \
+             (at most the room's height minus light.bulb_radius)"
+        );
+        // A value the file did not give is named as the built-in default.
+        let text = error_text("[room]\nsize = [8, 0.5, 8]\n[light]\nbulb_radius = 0.3\n");
+        assert!(
+            text.starts_with("test.toml: light.drop = 0.25 (built-in default) is out of range"),
+            "{text}"
+        );
+        assert!(text.contains("allowed 0 ..= 0.2 "), "{text}");
+
+        let text = error_text("[light]\nglow = 1\n");
+        assert!(
+            text.starts_with("test.toml:2: unknown key `light.glow`"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn runtime_light_is_checked() {
+        let mut scene = Scene::default();
+        scene.light.intensity = -1.0;
+        let text = validate(&scene).unwrap_err().to_string();
+        assert_eq!(
+            text,
+            "built-in default scene: light.intensity = -1 is out of range: allowed 0 ..= 100"
+        );
+    }
+
+    #[test]
+    fn consumes_balls_can_be_turned_off() {
+        let parsed = parse("[fireball]\nconsumes_balls = false\n").unwrap();
+        let mut expected = Scene::default();
+        expected.world.fireball.consumes_balls = false;
+        assert_eq!(parsed, expected);
+        assert!(
+            parse("[fireball]\nconsumes_balls = true\n")
+                .unwrap()
+                .world
+                .fireball
+                .consumes_balls
+        );
+
+        let text = error_text("[fireball]\nconsumes_balls = 0\n");
+        assert!(text.starts_with("test.toml:2: "), "{text}");
+    }
+
+    #[test]
+    fn effects_out_of_range_names_line_key_and_range() {
+        let text = error_text("[effects.trail]\nlife = 0.5\nsize = 12\n");
+        assert_eq!(
+            text,
+            "test.toml:3: effects.trail.size = 12 is out of range: allowed > 0 and <= 10"
+        );
+
+        let text = error_text("[effects]\ncapacity = 8\n");
+        assert_eq!(
+            text,
+            "test.toml:2: effects.capacity = 8 is out of range: allowed 16 ..= 1000000"
+        );
+
+        let text = error_text("[effects]\ncapacity = -5\n");
+        assert_eq!(
+            text,
+            "test.toml:2: effects.capacity = -5 is out of range: allowed 16 ..= 1000000"
+        );
+
+        let text = error_text("[effects.ball_hit]\nrate = 200000\n");
+        assert_eq!(
+            text,
+            "test.toml:2: effects.ball_hit.rate = 200000 is out of range: allowed 0 ..= 100000"
+        );
+
+        let text = error_text("\n[effects.wall_hit]\nduration = 0\n");
+        assert_eq!(
+            text,
+            "test.toml:3: effects.wall_hit.duration = 0 is out of range: allowed > 0 and <= 10"
+        );
+
+        let text = error_text("[effects.trail]\ninterval_min = 0.2\ninterval_max = 0.1\n");
+        assert_eq!(
+            text,
+            "test.toml:3: effects.trail.interval_max = 0.1 is out of range: \
+             allowed 0.2 ..= 10 (at least effects.trail.interval_min)"
+        );
+
+        let text = error_text("[effects.trail]\ninterval_min = 0.5\n");
+        assert!(
+            text.starts_with(
+                "test.toml: effects.trail.interval_max = 0.03 (built-in default) is out of range"
+            ),
+            "{text}"
+        );
+
+        let text = error_text("[effects.ball_hit]\nglow = 1\n");
+        assert!(
+            text.starts_with("test.toml:2: unknown key `effects.ball_hit.glow`"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn integers_are_accepted_for_reals() {
+        let parsed = parse("gravity = 10\n[room]\nsize = [6, 3, 8]\n").unwrap();
+        assert_eq!(parsed.world.gravity, 10.0);
+        assert_eq!(parsed.world.room.size, DVec3::new(6.0, 3.0, 8.0));
+    }
+
+    #[test]
+    fn unknown_key_names_line_and_key() {
+        let text = error_text("gravity = 9.81\n\n[balls]\ncount = 3\ncolour = [1, 0, 0]\n");
+        assert!(
+            text.starts_with("test.toml:5: unknown key `balls.colour`"),
+            "{text}"
+        );
+
+        let text = error_text("[lighting]\nintensity = 3\n");
+        assert!(text.starts_with("test.toml:1: "), "{text}");
+        assert!(text.contains("lighting"), "{text}");
+
+        let text = error_text("[[tumblers.placement]]\nx = 0\nz = 0\nangle = 3\n");
+        assert!(
+            text.starts_with("test.toml:4: unknown key `tumblers.placement.angle`"),
+            "{text}"
+        );
+
+        let text = error_text("[room.colors]\nfloor = [0, 0, 0]\nroof = [1, 1, 1]\n");
+        assert!(
+            text.starts_with("test.toml:3: unknown key `room.colors.roof`"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn out_of_range_names_line_key_and_range() {
+        let text = error_text("# comment\n[balls]\ncount = 3\nrestitution = 1.5\n");
+        assert_eq!(
+            text,
+            "test.toml:4: balls.restitution = 1.5 is out of range: allowed 0 ..= 1"
+        );
+
+        let text = error_text("[solver]\ndt = 0.5\n");
+        assert_eq!(
+            text,
+            "test.toml:2: solver.dt = 0.5 is out of range: allowed > 0 and <= 0.1"
+        );
+
+        let text = error_text("[balls]\ncount = -1\n");
+        assert_eq!(
+            text,
+            "test.toml:2: balls.count = -1 is out of range: allowed 0 ..= 1000000"
+        );
+
+        let text = error_text("[solver]\niterations = 0\n");
+        assert!(text.contains("solver.iterations = 0"), "{text}");
+        assert!(text.contains("allowed 1 ..= 256"), "{text}");
+
+        let text = error_text("gravity = nan\n");
+        assert!(text.starts_with("test.toml:1: gravity = NaN"), "{text}");
+    }
+
+    #[test]
+    fn range_errors_in_lists_point_at_the_entry() {
+        let text = error_text(
+            "[[tumblers.placement]]\nx = 0\nz = 0\n\n[[tumblers.placement]]\nx = 1\nz = 9\n",
+        );
+        assert!(
+            text.starts_with("test.toml:7: tumblers.placement[1].z = 9"),
+            "{text}"
+        );
+        assert!(text.contains("allowed -3.7 ..= 3.7"), "{text}");
+
+        let text = error_text("[room.colors]\nfloor = [0.5, 1.2, 0]\n");
+        assert!(text.starts_with("test.toml:2: room.colors.floor"), "{text}");
+    }
+
+    #[test]
+    fn dependent_ranges_follow_other_keys() {
+        // A smaller room makes the default placements invalid; the default
+        // value is named as such.
+        let text = error_text("[room]\nsize = [3, 3, 3]\n");
+        assert!(
+            text.starts_with("test.toml: tumblers.placement[0].x = -2.2 (built-in default)"),
+            "{text}"
+        );
+
+        let text = error_text("[balls]\nstart_fill = 1.5\n");
+        assert_eq!(
+            text,
+            "test.toml:2: balls.start_fill = 1.5 is out of range: allowed > 0 and <= 1"
+        );
+
+        let text = error_text("[balls]\nspeed_min = 5\nspeed_max = 4\n");
+        assert!(
+            text.starts_with("test.toml:3: balls.speed_max = 4"),
+            "{text}"
+        );
+
+        let text = error_text(
+            "[tumblers]\nspheres = [\n  { height = 0, radius = 0.3, mass = 2 },\n  \
+             { height = -0.1, radius = 0.1, mass = 4 },\n  \
+             { height = 0.3, radius = 0.35, mass = 0.4 },\n  \
+             { height = 0.5, radius = 0.1, mass = 0.1 },\n  \
+             { height = 0.6, radius = 0.1, mass = 0.1 },\n  \
+             { height = 0.7, radius = 0.1, mass = 0.1 },\n]\n",
+        );
+        assert!(
+            text.starts_with("test.toml:5: tumblers.spheres[2].radius = 0.35"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn wrong_sphere_count_is_an_error() {
+        let text = error_text("[tumblers]\nspheres = [{ height = 0, radius = 0.3, mass = 2 }]\n");
+        assert!(text.starts_with("test.toml:2: tumblers.spheres"), "{text}");
+        assert!(text.contains("exactly 6"), "{text}");
+    }
+
+    #[test]
+    fn wrong_type_names_line() {
+        let text = error_text("[room]\nrestitution = 0.5\nfriction = \"high\"\n");
+        assert!(text.starts_with("test.toml:3: "), "{text}");
+
+        let text = error_text("[balls]\ncount = 2.5\n");
+        assert!(text.starts_with("test.toml:2: "), "{text}");
+
+        let text = error_text("[room]\nsize = [1, 2]\n");
+        assert!(text.starts_with("test.toml:2: "), "{text}");
+    }
+
+    #[test]
+    fn syntax_error_names_line() {
+        let text = error_text("gravity = 9.81\n[balls\ncount = 3\n");
+        assert!(text.starts_with("test.toml:2: "), "{text}");
+    }
+
+    #[test]
+    fn zero_balls_and_zero_tumblers_are_valid() {
+        let parsed = parse("[balls]\ncount = 0\n[tumblers]\nplacement = []\n").unwrap();
+        assert_eq!(parsed.world.balls.count, 0);
+        assert!(parsed.world.tumblers.placements.is_empty());
+    }
+
+    #[test]
+    fn placements_replace_the_default_list() {
+        let parsed = parse(
+            "[[tumblers.placement]]\nx = 1\nz = -1\ntilt_axis = [0, 0, 1]\ntilt_deg = 20\n\n\
+             [[tumblers.placement]]\nx = -1\nz = 0.5\n",
+        )
+        .unwrap();
+        assert_eq!(
+            parsed.world.tumblers.placements,
+            vec![
+                TumblerPlacement {
+                    x: 1.0,
+                    z: -1.0,
+                    tilt_axis: DVec3::Z,
+                    tilt_deg: 20.0,
+                },
+                TumblerPlacement {
+                    x: -1.0,
+                    z: 0.5,
+                    tilt_axis: DVec3::X,
+                    tilt_deg: 0.0,
+                },
+            ]
+        );
+    }
+
+    #[test]
+    fn overlapping_tumblers_are_rejected() {
+        let text = error_text(
+            "[[tumblers.placement]]\nx = 0\nz = 0\n\n[[tumblers.placement]]\nx = 0.5\nz = 0\n",
+        );
+        assert!(
+            text.starts_with("test.toml:6: tumblers.placement[1]: overlaps"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn bad_tilt_is_rejected() {
+        let text = error_text("[[tumblers.placement]]\nx = 0\nz = 0\ntilt_deg = 200\n");
+        assert!(
+            text.starts_with("test.toml:4: tumblers.placement[0].tilt_deg = 200"),
+            "{text}"
+        );
+        let text = error_text("[[tumblers.placement]]\nx = 0\nz = 0\ntilt_axis = [0, 0, 0]\n");
+        assert!(
+            text.starts_with("test.toml:4: tumblers.placement[0].tilt_axis"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn overrides_are_checked_and_named() {
+        let overrides = Overrides {
+            balls: Some(7),
+            gravity: Some(1.5),
+        };
+        let parsed = parse_scene_with("gravity = 3\n", "test.toml", &overrides).unwrap();
+        assert_eq!(parsed.world.balls.count, 7);
+        assert_eq!(parsed.world.gravity, 1.5);
+
+        let overrides = Overrides {
+            balls: None,
+            gravity: Some(-2.0),
+        };
+        let text = parse_scene_with("", "test.toml", &overrides)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            text,
+            "command-line option --gravity: gravity = -2 is out of range: allowed 0 ..= 100"
+        );
+    }
+
+    #[test]
+    fn missing_file_names_the_file() {
+        let err = load_scene(Some(Path::new("no/such/scene.toml"))).unwrap_err();
+        assert!(matches!(err, SceneError::Read { .. }));
+        assert!(err.to_string().contains("no/such/scene.toml"));
+    }
+}
