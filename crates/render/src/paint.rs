@@ -2,7 +2,7 @@
 //!
 //! Alpha marks paint that takes each tumbler's own colour (its coat); the
 //! face, the trim and the hair keep their colours. UVs follow
-//! [`crate::tumbler_mesh`]: `u` around the axis with the front at 0.25, `v`
+//! [`crate::tumbler_mesh()`]: `u` around the axis with the front at 0.25, `v`
 //! from the top (0) to the bottom (1) along the same curve as the mesh rings.
 
 use image::{Rgba, RgbaImage};

@@ -1,0 +1,273 @@
+//! The render pipelines: how each kind of thing is drawn, into which
+//! target, with which shader entry points, blending and depth.
+
+use super::bindings::Layouts;
+use super::{DEPTH_FORMAT, HDR_FORMAT};
+use crate::instances::{BALL_MATERIAL, BallInstance, Instance};
+use crate::mesh::Vertex;
+use crate::shadow;
+
+/// Every pipeline of a frame but the cursor's.
+pub(super) struct Pipelines {
+    /// Lit and opaque meshes: the room and the tumblers.
+    pub lit: wgpu::RenderPipeline,
+    /// Balls, each a square that traces its sphere.
+    pub ball: wgpu::RenderPipeline,
+    /// What glows and is not lit: the bulb.
+    pub emissive: wgpu::RenderPipeline,
+    /// See-through particles, blended over what is behind.
+    pub glow: wgpu::RenderPipeline,
+    /// Meshes into a shadow face.
+    pub shadow: wgpu::RenderPipeline,
+    /// Balls into a shadow face.
+    pub ball_shadow: wgpu::RenderPipeline,
+    /// The HDR frame, tone-mapped into the output.
+    pub tonemap: wgpu::RenderPipeline,
+}
+
+impl Pipelines {
+    /// The pipelines for `msaa` samples per pixel, tone mapping into
+    /// `output_format`.
+    pub fn new(
+        device: &wgpu::Device,
+        layouts: &Layouts,
+        msaa: u32,
+        output_format: wgpu::TextureFormat,
+    ) -> Pipelines {
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("scene.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/scene.wgsl").into()),
+        });
+        let tonemap_shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("tonemap.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/tonemap.wgsl").into()),
+        });
+
+        let scene_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("scene"),
+                bind_group_layouts: &[Some(&layouts.scene)],
+                immediate_size: 0,
+            });
+        let buffers = [Some(Vertex::layout()), Some(Instance::layout())];
+        // Opaque passes write depth; see-through ones blend and only test it.
+        let scene_pipeline_for = |entry: &str, label: &str, blend: Option<wgpu::BlendState>| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&scene_pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some("vs_scene"),
+                    compilation_options: Default::default(),
+                    buffers: &buffers,
+                },
+                primitive: wgpu::PrimitiveState {
+                    cull_mode: Some(wgpu::Face::Back),
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(blend.is_none()),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: msaa,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: HDR_FORMAT,
+                        blend,
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let scene_pipeline = scene_pipeline_for("fs_lit", "lit", None);
+        // Balls are squares that trace their sphere (see scene.wgsl): seen
+        // from either side, and smooth at the outline through alpha to
+        // coverage where there are samples to cover.
+        let alpha_to_coverage = msaa > 1;
+        let (kind, specular, shininess) = BALL_MATERIAL;
+        let ball_constants = [
+            ("ALPHA_TO_COVERAGE", f64::from(u8::from(alpha_to_coverage))),
+            ("BALL_KIND", f64::from(kind as u32)),
+            ("BALL_SPECULAR", f64::from(specular)),
+            ("BALL_SHININESS", f64::from(shininess)),
+        ];
+        let ball_buffers = [Some(Vertex::layout()), Some(BallInstance::layout())];
+        let ball_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("balls"),
+            layout: Some(&scene_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_ball"),
+                compilation_options: Default::default(),
+                buffers: &ball_buffers,
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState {
+                count: msaa,
+                alpha_to_coverage_enabled: alpha_to_coverage,
+                ..Default::default()
+            },
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_ball"),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &ball_constants,
+                    ..Default::default()
+                },
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: HDR_FORMAT,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        let emissive_pipeline = scene_pipeline_for("fs_emissive", "emissive", None);
+        // Premultiplied alpha: a fragment adds its light and covers a share
+        // of what is behind; with no cover it is purely additive (the shells,
+        // the cubes' glowing frames), so only the cubes' dark insides depend
+        // on drawing order, and small cubes need no sorting. Depth is tested
+        // (walls hide particles) but not written (particles never hide each
+        // other).
+        let glow_pipeline = scene_pipeline_for(
+            "fs_glow",
+            "glow",
+            Some(wgpu::BlendState {
+                color: wgpu::BlendComponent {
+                    src_factor: wgpu::BlendFactor::One,
+                    dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                    operation: wgpu::BlendOperation::Add,
+                },
+                alpha: wgpu::BlendComponent::OVER,
+            }),
+        );
+
+        let shadow_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("shadow"),
+                bind_group_layouts: &[Some(&layouts.face)],
+                immediate_size: 0,
+            });
+        // Slope-scaled bias keeps surfaces from shadowing themselves (acne).
+        let shadow_bias = wgpu::DepthBiasState {
+            constant: 2,
+            slope_scale: 2.0,
+            clamp: 0.0,
+        };
+        let shadow_pipeline_for = |vertex: &str,
+                                   fragment: Option<&str>,
+                                   buffers: &[Option<wgpu::VertexBufferLayout>],
+                                   label: &str| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&shadow_pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some(vertex),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: wgpu::PrimitiveState::default(),
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: shadow::SHADOW_FORMAT,
+                    depth_write_enabled: Some(true),
+                    depth_compare: Some(wgpu::CompareFunction::Less),
+                    stencil: Default::default(),
+                    bias: shadow_bias,
+                }),
+                multisample: Default::default(),
+                fragment: fragment.map(|entry| wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    targets: &[],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let shadow_pipeline = shadow_pipeline_for("vs_shadow", None, &buffers, "shadow");
+        let ball_shadow_pipeline = shadow_pipeline_for(
+            "vs_ball_shadow",
+            Some("fs_ball_shadow"),
+            &ball_buffers,
+            "ball shadow",
+        );
+
+        let tonemap_pipeline = screen_pipeline(
+            device,
+            "tonemap",
+            &layouts.tonemap,
+            &tonemap_shader,
+            ("vs_fullscreen", "fs_tonemap"),
+            output_format,
+        );
+
+        Pipelines {
+            lit: scene_pipeline,
+            ball: ball_pipeline,
+            emissive: emissive_pipeline,
+            glow: glow_pipeline,
+            shadow: shadow_pipeline,
+            ball_shadow: ball_shadow_pipeline,
+            tonemap: tonemap_pipeline,
+        }
+    }
+}
+
+/// A pipeline that draws straight into the output, in screen space: no
+/// vertex buffers, no depth, one bind group.
+pub(super) fn screen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    shader: &wgpu::ShaderModule,
+    (vertex, fragment): (&str, &str),
+    output_format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &[Some(layout)],
+        immediate_size: 0,
+    });
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(&pipeline_layout),
+        vertex: wgpu::VertexState {
+            module: shader,
+            entry_point: Some(vertex),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: shader,
+            entry_point: Some(fragment),
+            compilation_options: Default::default(),
+            targets: &[Some(output_format.into())],
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}
