@@ -53,7 +53,7 @@ pub struct Summary {
     pub fireball: bool,
     pub kinetic: f64,
     pub potential: f64,
-    /// Events per kind, in [`EVENT_KINDS`] order.
+    /// Events per kind, in the order of `EVENT_KINDS`.
     pub events: [u64; 6],
 }
 

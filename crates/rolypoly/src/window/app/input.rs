@@ -1,0 +1,267 @@
+//! The keys and the mouse: walking, the mouse's three modes (look, grab,
+//! free), and the keys that launch the fireball, pause, re-initialise the
+//! balls, show help and take screenshots.
+
+use glam::{DVec3, Vec2, Vec3};
+use serde_json::json;
+use winit::dpi::PhysicalPosition;
+use winit::event::{ElementState, KeyEvent, MouseButton};
+use winit::event_loop::ActiveEventLoop;
+use winit::keyboard::{KeyCode, PhysicalKey};
+use winit::window::CursorGrabMode;
+
+use super::App;
+
+/// What the mouse does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum MouseMode {
+    /// Captured and hidden; moving it turns the view.
+    Look,
+    /// The view is locked; our own white arrow is the cursor; the left
+    /// button grabs tumblers.
+    Grab,
+    /// Released by Escape: the mouse is the desktop's again.
+    Free,
+}
+
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Keys {
+    pub forward: bool,
+    pub back: bool,
+    pub left: bool,
+    pub right: bool,
+}
+
+impl App {
+    pub(super) fn set_mode(&mut self, mode: MouseMode) {
+        let Some(r) = &self.running else { return };
+        let window = &r.window;
+        match mode {
+            MouseMode::Look => {
+                // Confining is a courtesy: without it (no window manager) the
+                // pointer is re-centred every move anyway.
+                let _ = window.set_cursor_grab(CursorGrabMode::Confined);
+                window.set_cursor_visible(false);
+                self.look_settled = false;
+                self.recentre();
+            }
+            MouseMode::Grab => {
+                let _ = window.set_cursor_grab(CursorGrabMode::None);
+                window.set_cursor_visible(false);
+            }
+            MouseMode::Free => {
+                let _ = window.set_cursor_grab(CursorGrabMode::None);
+                window.set_cursor_visible(true);
+            }
+        }
+        if self.mode == MouseMode::Grab && mode != MouseMode::Grab {
+            self.release_tumbler();
+        }
+        self.mode = mode;
+    }
+
+    pub(super) fn centre(&self) -> Vec2 {
+        self.running.as_ref().map_or(Vec2::ZERO, |r| {
+            Vec2::new(r.config.width as f32, r.config.height as f32) * 0.5
+        })
+    }
+
+    pub(super) fn recentre(&self) {
+        if let Some(r) = &self.running {
+            let c = self.centre();
+            let _ = r
+                .window
+                .set_cursor_position(PhysicalPosition::new(c.x as f64, c.y as f64));
+        }
+    }
+
+    pub(super) fn viewport(&self) -> Vec2 {
+        self.running.as_ref().map_or(Vec2::ONE, |r| {
+            Vec2::new(r.config.width as f32, r.config.height as f32)
+        })
+    }
+
+    pub(super) fn key(&mut self, event_loop: &ActiveEventLoop, event: &KeyEvent) {
+        let PhysicalKey::Code(code) = event.physical_key else {
+            return;
+        };
+        let down = event.state == ElementState::Pressed;
+        match code {
+            KeyCode::KeyW => self.keys.forward = down,
+            KeyCode::KeyS => self.keys.back = down,
+            KeyCode::KeyA => self.keys.left = down,
+            KeyCode::KeyD => self.keys.right = down,
+            KeyCode::ShiftLeft if self.paused != down => {
+                self.paused = down;
+                self.log.say(
+                    "pause",
+                    json!({ "paused": down, "sim_time": self.world.time() }),
+                );
+            }
+            KeyCode::ShiftLeft => {}
+            _ if !down || event.repeat => {}
+            KeyCode::KeyF => {
+                if self.world.fireball().is_some() {
+                    self.world.remove_fireball();
+                } else {
+                    let from = self.camera.position + self.camera.forward() * 0.6;
+                    self.world
+                        .launch_fireball(Some((from.as_dvec3(), self.camera.forward().as_dvec3())));
+                }
+                self.log
+                    .say("fireball", json!({ "on": self.world.fireball().is_some() }));
+            }
+            KeyCode::KeyG => {
+                let next = if self.mode == MouseMode::Grab {
+                    MouseMode::Look
+                } else {
+                    MouseMode::Grab
+                };
+                self.set_mode(next);
+                self.log.say("grab_mode", json!({ "on": next == MouseMode::Grab, "tumblers_on_screen": self.tumblers_on_screen() }));
+            }
+            KeyCode::KeyI => match self.world.reset_balls() {
+                Ok(()) => self.log.say(
+                    "reset",
+                    json!({ "balls": self.world.balls().len(), "sim_time": self.world.time() }),
+                ),
+                Err(e) => self.fail(
+                    event_loop,
+                    anyhow::Error::new(e).context("cannot re-initialise the balls"),
+                ),
+            },
+            KeyCode::KeyH | KeyCode::F1 => self.help = !self.help,
+            KeyCode::F12 => {
+                if let Err(e) = self.screenshot() {
+                    // A screenshot that cannot be written is reported, and the program goes on.
+                    eprintln!("error: {e:#}");
+                    self.log
+                        .say("screenshot_failed", json!({ "error": format!("{e:#}") }));
+                }
+            }
+            KeyCode::Escape => {
+                if self.mode == MouseMode::Free {
+                    event_loop.exit();
+                } else {
+                    self.set_mode(MouseMode::Free);
+                    self.log.say("mouse", json!({ "captured": false }));
+                }
+            }
+            _ => {}
+        }
+    }
+
+    pub(super) fn mouse_moved(&mut self, at: Vec2) {
+        match self.mode {
+            MouseMode::Look => {
+                let delta = at - self.centre();
+                // The first position after capturing says where the pointer
+                // was, not how far it moved; so does a jump across a good part
+                // of the window (the pointer left and came back).
+                let jump = 0.25 * self.viewport().min_element();
+                if !self.look_settled {
+                    self.look_settled = true;
+                } else if delta.length_squared() > 0.0 && delta.length() < jump {
+                    self.camera.turn(delta, self.options.look_speed);
+                }
+                if delta.length_squared() > 0.0 {
+                    self.recentre();
+                }
+            }
+            MouseMode::Grab => {
+                self.cursor = at;
+                if let Some(height) = self.drag_height {
+                    if let Some(target) = self.cursor_on_plane(height) {
+                        self.world.drag_to(target);
+                    }
+                }
+            }
+            MouseMode::Free => {}
+        }
+    }
+
+    /// Where the ray under our cursor meets the horizontal plane at `height`.
+    pub(super) fn cursor_on_plane(&self, height: f64) -> Option<DVec3> {
+        let (origin, dir) = self.camera.camera().ray(self.cursor, self.viewport());
+        if dir.y.abs() < 1e-4 {
+            return None;
+        }
+        let t = (height as f32 - origin.y) / dir.y;
+        (t > 0.0).then(|| (origin + dir * t).as_dvec3())
+    }
+
+    pub(super) fn button(&mut self, button: MouseButton, state: ElementState) {
+        if button != MouseButton::Left {
+            return;
+        }
+        match (self.mode, state) {
+            (MouseMode::Free, ElementState::Pressed) => {
+                self.set_mode(MouseMode::Look);
+                self.log.say("mouse", json!({ "captured": true }));
+            }
+            (MouseMode::Grab, ElementState::Pressed) => {
+                let (origin, dir) = self.camera.camera().ray(self.cursor, self.viewport());
+                if let Some(pick) = self.world.pick(origin.as_dvec3(), dir.as_dvec3()) {
+                    self.world.grab(pick.tumbler, pick.point);
+                    self.drag_height = Some(pick.point.y);
+                    let at = self.world.tumblers()[pick.tumbler].bottom_center();
+                    self.log.say("grabbed", json!({ "tumbler": pick.tumbler, "at": [at.x, at.z], "point": pick.point.to_array() }));
+                }
+            }
+            (MouseMode::Grab, ElementState::Released) => self.release_tumbler(),
+            _ => {}
+        }
+    }
+
+    /// Where each tumbler's belly appears in the window (pixels), for the log.
+    pub(super) fn tumblers_on_screen(&self) -> Vec<[f32; 2]> {
+        let size = self.viewport();
+        let view_proj = self.camera.camera().view_projection(size.x / size.y);
+        let shape = self.world.tumbler_shape();
+        self.world
+            .tumblers()
+            .iter()
+            .map(|t| {
+                let belly = t
+                    .sphere_center(shape, 2.min(shape.spheres.len() - 1))
+                    .as_vec3();
+                let clip = view_proj * belly.extend(1.0);
+                if clip.w <= 0.0 {
+                    // Behind the camera: nowhere on screen.
+                    return [-1.0, -1.0];
+                }
+                let ndc = clip.truncate() / clip.w;
+                [(ndc.x * 0.5 + 0.5) * size.x, (0.5 - ndc.y * 0.5) * size.y]
+            })
+            .collect()
+    }
+
+    pub(super) fn release_tumbler(&mut self) {
+        if let Some(index) = self.world.grabbed() {
+            self.world.release();
+            let at = self.world.tumblers()[index].bottom_center();
+            self.log
+                .say("released", json!({ "tumbler": index, "at": [at.x, at.z] }));
+        }
+        self.drag_height = None;
+    }
+
+    /// Moves the camera by the walking keys held, for `elapsed` seconds.
+    pub(super) fn walk(&mut self, elapsed: f32) {
+        let forward = self.keys.forward as i32 - self.keys.back as i32;
+        let right = self.keys.right as i32 - self.keys.left as i32;
+        if forward == 0 && right == 0 {
+            return;
+        }
+        let room = *self.world.room();
+        let margin = Vec3::splat(0.15);
+        self.camera.walk(
+            forward as f32,
+            right as f32,
+            self.options.move_speed,
+            elapsed,
+            room.min.as_vec3() + margin,
+            room.max.as_vec3() - margin,
+        );
+    }
+}
