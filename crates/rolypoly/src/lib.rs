@@ -12,6 +12,7 @@ pub mod trace;
 pub mod window;
 
 use std::io::{self, Write};
+use std::path::Path;
 
 use anyhow::Context;
 use rolypoly_physics::World;
@@ -21,6 +22,7 @@ use scene::BUILTIN_ORIGIN;
 
 /// Runs the program for parsed arguments.
 pub fn run(cli: &Cli) -> anyhow::Result<()> {
+    check_outputs(cli)?;
     let scene_args = &cli.scene;
     let path = scene_args.scene.as_deref();
     let scene = scene::load_scene_with(path, &scene_args.overrides())?;
@@ -66,6 +68,39 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
             args,
         ),
         Some(Command::MakeTumblerObj(args)) => render::make_tumbler_obj(world.config(), args),
+    }
+}
+
+/// Fails at once, before any work, where the run's output could never be
+/// written: a file in a folder that does not exist, or screenshots into a
+/// folder that is not one. (A trace file is created before its run.)
+fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
+    let file_in_folder = |out: &Path| {
+        let folder = out.parent().filter(|p| !p.as_os_str().is_empty());
+        match folder {
+            Some(folder) if !folder.is_dir() => anyhow::bail!(
+                "cannot write `{}`: the folder `{}` does not exist",
+                out.display(),
+                folder.display()
+            ),
+            _ => Ok(()),
+        }
+    };
+    match &cli.command {
+        None => {
+            let dir = &cli.window.screenshot_dir;
+            if dir.is_dir() {
+                Ok(())
+            } else {
+                anyhow::bail!(
+                    "--screenshot-dir `{}`: no such folder (F12 writes screenshots there)",
+                    dir.display()
+                )
+            }
+        }
+        Some(Command::Render(args)) => file_in_folder(&args.out),
+        Some(Command::MakeTumblerObj(args)) => file_in_folder(&args.out),
+        Some(Command::Simulate(_)) => Ok(()),
     }
 }
 

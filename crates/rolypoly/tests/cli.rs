@@ -123,6 +123,21 @@ fn no_subcommand_without_a_display_is_a_clear_error() {
 }
 
 #[test]
+fn a_screenshot_folder_that_does_not_exist_is_refused_before_the_window_opens() {
+    let output = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(["--screenshot-dir", "/no/such/folder"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("runs");
+    let err = assert_clean_failure(&output);
+    assert!(
+        err.contains("--screenshot-dir") && err.contains("/no/such/folder"),
+        "{err}"
+    );
+}
+
+#[test]
 fn trace_to_a_file_and_summary_to_stdout() {
     let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli-trace.jsonl");
     let path_text = path.to_str().expect("UTF-8 path");
@@ -302,6 +317,25 @@ fn render_rejects_bad_sizes_and_meshes_cleanly() {
         "{err}"
     );
     assert!(!out.exists(), "no frame is written on failure");
+
+    // Refused before the minute of simulation it asks for, not after.
+    let err = assert_clean_failure(&rolypoly(&[
+        "render",
+        "--time",
+        "60",
+        "--out",
+        "/no/such/folder/frame.png",
+    ]));
+    assert!(
+        err.contains("the folder `/no/such/folder` does not exist"),
+        "{err}"
+    );
+    let err = assert_clean_failure(&rolypoly(&[
+        "make-tumbler-obj",
+        "--out",
+        "/no/such/folder/t.obj",
+    ]));
+    assert!(err.contains("/no/such/folder"), "{err}");
 }
 
 #[test]
