@@ -10,6 +10,16 @@ fn rolypoly(args: &[&str]) -> Output {
         .expect("the rolypoly binary runs")
 }
 
+/// Runs the binary as on a machine with no display to open a window on.
+fn rolypoly_without_display(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(args)
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("the rolypoly binary runs")
+}
+
 fn stdout(output: &Output) -> String {
     String::from_utf8(output.stdout.clone()).expect("stdout is UTF-8")
 }
@@ -112,24 +122,14 @@ fn summary_without_trace() {
 
 #[test]
 fn no_subcommand_without_a_display_is_a_clear_error() {
-    let output = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
-        .args(["--balls", "5"])
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .expect("runs");
+    let output = rolypoly_without_display(&["--balls", "5"]);
     let err = assert_clean_failure(&output);
     assert!(err.contains("display"), "{err}");
 }
 
 #[test]
 fn a_screenshot_folder_that_does_not_exist_is_refused_before_the_window_opens() {
-    let output = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
-        .args(["--screenshot-dir", "/no/such/folder"])
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .output()
-        .expect("runs");
+    let output = rolypoly_without_display(&["--screenshot-dir", "/no/such/folder"]);
     let err = assert_clean_failure(&output);
     assert!(
         err.contains("--screenshot-dir") && err.contains("/no/such/folder"),
