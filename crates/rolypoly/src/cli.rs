@@ -82,7 +82,11 @@ fn parse_bounded(text: &str, lo: f32, hi: f32) -> Result<f32, String> {
     if v.is_finite() && (lo..=hi).contains(&v) {
         Ok(v)
     } else {
-        Err(format!("{v} is out of range: allowed {lo} ..= {hi}"))
+        // As written: `1e300` rather than `inf`, or all 300 digits.
+        Err(format!(
+            "{} is out of range: allowed {lo} ..= {hi}",
+            text.trim()
+        ))
     }
 }
 
@@ -297,9 +301,8 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
     if seconds.is_finite() && (0.0..=1e9).contains(&seconds) {
         Ok(seconds)
     } else {
-        Err(format!(
-            "{seconds} is out of range: allowed 0 ..= 1000000000"
-        ))
+        // As written: `1e308` rather than all its 309 digits.
+        Err(format!("{text} is out of range: allowed 0 ..= 1000000000"))
     }
 }
 
@@ -339,6 +342,22 @@ mod tests {
         assert!(Cli::try_parse_from(["rolypoly", "simulate", "--seconds", "-1"]).is_err());
         assert!(
             Cli::try_parse_from(["rolypoly", "simulate", "--steps", "1", "--every", "0"]).is_err()
+        );
+    }
+
+    #[test]
+    fn a_number_out_of_range_is_named_as_written() {
+        assert_eq!(
+            parse_seconds("1e308").unwrap_err(),
+            "1e308 is out of range: allowed 0 ..= 1000000000"
+        );
+        assert_eq!(
+            parse_look(" 1e300").unwrap_err(),
+            "1e300 is out of range: allowed 0.01 ..= 5"
+        );
+        assert_eq!(
+            parse_speed("0.05").unwrap_err(),
+            "0.05 is out of range: allowed 0.1 ..= 50"
         );
     }
 
