@@ -23,7 +23,23 @@ impl Camera {
     }
 
     pub fn view(&self) -> Mat4 {
-        glam::camera::rh::view::look_at_mat4(self.eye, self.target, Vec3::Y)
+        glam::camera::rh::view::look_at_mat4(self.eye, self.target, self.up())
+    }
+
+    /// The world direction the top of the picture leans towards: +Y, but
+    /// for a camera looking straight down or up, where +Y is the line of
+    /// sight itself and gives no picture at all, the far wall (-Z) looking
+    /// down and the near one looking up: where +Y tends to as a camera
+    /// facing the far wall tilts that way.
+    fn up(&self) -> Vec3 {
+        let sight = self.target - self.eye;
+        if sight.cross(Vec3::Y).length_squared() > 1e-12 * sight.length_squared() {
+            Vec3::Y
+        } else if sight.y < 0.0 {
+            Vec3::NEG_Z
+        } else {
+            Vec3::Z
+        }
     }
 
     /// Projection to wgpu's clip space (depth 0..1).
@@ -61,5 +77,27 @@ mod tests {
         let expected = (cam.target - cam.eye).normalize();
         assert!(dir.dot(expected) > 0.9999, "{dir} vs {expected}");
         assert!(origin.distance(cam.eye) < 0.05);
+    }
+
+    #[test]
+    fn a_camera_looking_straight_down_or_up_still_sees() {
+        let size = glam::Vec2::new(640.0, 480.0);
+        for (eye_y, far_wall_at_top) in [(4.0, true), (-4.0, false)] {
+            let cam = Camera {
+                eye: Vec3::new(0.0, eye_y, 0.0),
+                target: Vec3::ZERO,
+                fov_y_deg: 70.0,
+            };
+            let matrix = cam.view_projection(size.x / size.y);
+            assert!(matrix.is_finite(), "{matrix}");
+            // The target in the middle of the picture, and a point towards
+            // the far wall above it looking down (clip y up), below it
+            // looking up.
+            let centre = matrix.project_point3(cam.target);
+            assert!(centre.truncate().length() < 1e-5, "{centre}");
+            let far = matrix.project_point3(Vec3::new(0.0, 0.0, -1.0));
+            assert_eq!(far.y > 0.0, far_wall_at_top, "{far}");
+            assert!(far.x.abs() < 1e-5, "{far}");
+        }
     }
 }
