@@ -134,6 +134,14 @@ pub fn from_obj(text: &str, origin: &str) -> Result<MeshData, RenderError> {
                     model.name
                 )));
             }
+            // Shading divides by the normal's length: none would light the
+            // surface with NaN.
+            if normal.iter().map(|x| x * x).sum::<f32>() < 1e-12 {
+                return Err(error(format!(
+                    "object `{}` has a normal of zero length (vn 0 0 0)",
+                    model.name
+                )));
+            }
             mesh.vertices.push(Vertex {
                 position,
                 normal,
@@ -224,6 +232,15 @@ mod tests {
             ("", "no triangles"),
             ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "lacks normals"),
             ("v 0 0 0\nf 1 2 9\n", "not a valid OBJ"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nf 1/1/1 2/1/1 3/1/1\n\
+                 vn 0 0 0\nf 1/1/2 2/1/2 3/1/2\n",
+                "normal of zero length",
+            ),
+            (
+                "v nan 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nf 1/1/1 2/1/1 3/1/1\n",
+                "non-finite number",
+            ),
         ] {
             let err = from_obj(text, "bad.obj")
                 .expect_err("must fail")
