@@ -221,6 +221,7 @@ fn syntax_error(error: &toml::de::Error, source: &str, origin: &str) -> SceneErr
         .join("; ")
         .replacen("unknown field", "unknown key", 1)
         .replacen("missing field", "missing key", 1);
+    let message = in_scene_words(&message);
     SceneError::Syntax {
         at: Location {
             origin: origin.to_owned(),
@@ -228,6 +229,24 @@ fn syntax_error(error: &toml::de::Error, source: &str, origin: &str) -> SceneErr
         },
         message: qualify_unknown_key(message, source, line),
     }
+}
+
+/// Says what a value should have been in the words of a TOML scene file,
+/// not of the program that reads it: "expected f64" becomes "expected a
+/// number", "expected struct FileRoom" "expected a table of keys".
+fn in_scene_words(message: &str) -> String {
+    let Some((head, expected)) = message.rsplit_once("expected ") else {
+        return message.to_owned();
+    };
+    let plain = match expected {
+        "f64" | "f32" => "a number",
+        "i64" | "u64" | "u32" | "usize" => "a whole number",
+        "a sequence" => "an array",
+        "a map" => "a table of keys",
+        struct_name if struct_name.starts_with("struct File") => "a table of keys",
+        _ => return message.to_owned(),
+    };
+    format!("{head}expected {plain}")
 }
 
 /// Turns "unknown key `colour`" into "unknown key `balls.colour`" when the
@@ -660,6 +679,34 @@ mod tests {
     fn syntax_error_names_line() {
         let text = error_text("gravity = 9.81\n[balls\ncount = 3\n");
         assert!(text.starts_with("test.toml:2: "), "{text}");
+    }
+
+    #[test]
+    fn a_value_of_the_wrong_type_is_named_in_scene_words() {
+        for (text, expect) in [
+            (
+                "gravity = \"x\"\n",
+                "test.toml:1: invalid type: string \"x\", expected a number",
+            ),
+            (
+                "[solver]\niterations = 1.5\n",
+                "test.toml:2: invalid type: floating point `1.5`, expected a whole number",
+            ),
+            (
+                "room = 3\n",
+                "test.toml:1: invalid type: integer `3`, expected a table of keys",
+            ),
+            (
+                "[tumblers]\nplacement = 3\n",
+                "test.toml:2: invalid type: integer `3`, expected an array",
+            ),
+            (
+                "[room]\nsize = [1, 2]\n",
+                "test.toml:2: invalid length 2, expected an array of length 3",
+            ),
+        ] {
+            assert_eq!(error_text(text), expect);
+        }
     }
 
     #[test]
