@@ -78,10 +78,18 @@ impl Bounds {
 impl fmt::Display for Bounds {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match (self.lo, self.hi) {
-            (End::Incl(lo), End::Incl(hi)) => write!(f, "{lo} ..= {hi}"),
-            (End::Incl(lo), End::Excl(hi)) => write!(f, ">= {lo} and < {hi}"),
-            (End::Excl(lo), End::Incl(hi)) => write!(f, "> {lo} and <= {hi}"),
-            (End::Excl(lo), End::Excl(hi)) => write!(f, "> {lo} and < {hi}"),
+            (End::Incl(lo), End::Incl(hi)) => {
+                write!(f, "{} ..= {}", number_text(lo), number_text(hi))
+            }
+            (End::Incl(lo), End::Excl(hi)) => {
+                write!(f, ">= {} and < {}", number_text(lo), number_text(hi))
+            }
+            (End::Excl(lo), End::Incl(hi)) => {
+                write!(f, "> {} and <= {}", number_text(lo), number_text(hi))
+            }
+            (End::Excl(lo), End::Excl(hi)) => {
+                write!(f, "> {} and < {}", number_text(lo), number_text(hi))
+            }
         }
     }
 }
@@ -92,6 +100,8 @@ pub(super) struct Sources {
     pub(super) from_file: bool,
     /// Key path -> line in the file.
     pub(super) lines: HashMap<String, usize>,
+    /// Key path -> its number as written in the file, for keys of one number.
+    pub(super) written: HashMap<String, String>,
     /// Key path -> the command-line option that set it.
     pub(super) options: HashMap<String, String>,
 }
@@ -116,12 +126,25 @@ impl Sources {
     }
 }
 
+/// A number as a message shows it: in full where that is short, else in
+/// exponent form (`1e308`, not 309 digits).
+fn number_text(v: f64) -> String {
+    let huge_or_tiny = v.abs() >= 1e16 || (v != 0.0 && v.abs() < 1e-6);
+    if v.is_finite() && huge_or_tiny {
+        format!("{v:e}")
+    } else {
+        v.to_string()
+    }
+}
+
 fn vec3_text(v: DVec3) -> String {
-    format!("[{}, {}, {}]", v.x, v.y, v.z)
+    let [x, y, z] = v.to_array().map(number_text);
+    format!("[{x}, {y}, {z}]")
 }
 
 fn rgb_text(c: Rgb) -> String {
-    format!("[{}, {}, {}]", c[0], c[1], c[2])
+    let [r, g, b] = c.map(|x| number_text(widen(x)));
+    format!("[{r}, {g}, {b}]")
 }
 
 /// The `f64` with the same shortest decimal form as `v`: 0.09 rather than
@@ -152,6 +175,17 @@ impl Checker<'_> {
         }
     }
 
+    /// The value of the one-number key `key` as the message shows it: as
+    /// written in the file, if it was, since the value kept may have been
+    /// rounded to `inf` in single precision.
+    fn number_shown(&self, key: &str, v: f64) -> String {
+        let from_option = self.sources.options.contains_key(key);
+        match self.sources.written.get(key) {
+            Some(text) if !from_option => text.clone(),
+            _ => number_text(v),
+        }
+    }
+
     fn invalid(&self, key: &str, problem: String) -> SceneError {
         SceneError::Invalid {
             at: self.sources.locate(key).0,
@@ -174,7 +208,7 @@ impl Checker<'_> {
         } else {
             format!("{bounds} ({why})")
         };
-        Err(self.out_of_range(key, v.to_string(), allowed))
+        Err(self.out_of_range(key, self.number_shown(key, v), allowed))
     }
 
     /// [`Self::real_why`] for an `f32` key.
@@ -186,7 +220,8 @@ impl Checker<'_> {
         if (lo..=hi).contains(&v) {
             Ok(())
         } else {
-            Err(self.out_of_range(key, v.to_string(), format!("{lo} ..= {hi}")))
+            let shown = self.number_shown(key, v as f64);
+            Err(self.out_of_range(key, shown, format!("{lo} ..= {hi}")))
         }
     }
 

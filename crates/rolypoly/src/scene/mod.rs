@@ -153,6 +153,7 @@ pub fn validate(scene: &Scene) -> Result<(), SceneError> {
         origin: BUILTIN_ORIGIN.to_owned(),
         from_file: false,
         lines: HashMap::new(),
+        written: HashMap::new(),
         options: HashMap::new(),
     };
     Checker {
@@ -168,6 +169,7 @@ fn build(source: Option<&str>, origin: &str, overrides: &Overrides) -> Result<Sc
         origin: origin.to_owned(),
         from_file: source.is_some(),
         lines: HashMap::new(),
+        written: HashMap::new(),
         options: HashMap::new(),
     };
     if let Some(source) = source {
@@ -177,9 +179,11 @@ fn build(source: Option<&str>, origin: &str, overrides: &Overrides) -> Result<Sc
             source,
             origin,
             lines: HashMap::new(),
+            written: HashMap::new(),
         };
         overlay.apply(file, &mut scene)?;
         sources.lines = overlay.lines;
+        sources.written = overlay.written;
     }
     if let Some(count) = overrides.balls {
         scene.world.balls.count = count;
@@ -602,7 +606,10 @@ mod tests {
         assert!(text.contains("allowed 1 ..= 256"), "{text}");
 
         let text = error_text("gravity = nan\n");
-        assert!(text.starts_with("test.toml:1: gravity = NaN"), "{text}");
+        assert!(
+            text.starts_with("test.toml:1: gravity = nan is out"),
+            "{text}"
+        );
     }
 
     #[test]
@@ -703,6 +710,34 @@ mod tests {
             (
                 "[room]\nsize = [1, 2]\n",
                 "test.toml:2: invalid length 2, expected an array of length 3",
+            ),
+        ] {
+            assert_eq!(error_text(text), expect);
+        }
+    }
+
+    #[test]
+    fn a_number_out_of_range_is_shown_as_written() {
+        for (text, expect) in [
+            // Not 309 digits.
+            (
+                "gravity = 1e308\n",
+                "test.toml:1: gravity = 1e308 is out of range: allowed 0 ..= 100",
+            ),
+            // Not `inf`: single precision cannot hold it.
+            (
+                "[light]\nintensity = 1e308\n",
+                "test.toml:2: light.intensity = 1e308 is out of range: allowed 0 ..= 100",
+            ),
+            (
+                "[balls]\ncount = 2_000_000\n",
+                "test.toml:2: balls.count = 2_000_000 is out of range: allowed 0 ..= 1000000",
+            ),
+            // An array's numbers are shown short.
+            (
+                "[room]\nsize = [1e300, 4, 4]\n",
+                "test.toml:2: room.size = [1e300, 4, 4] is out of range: \
+                 allowed each component 0.5 ..= 1000",
             ),
         ] {
             assert_eq!(error_text(text), expect);

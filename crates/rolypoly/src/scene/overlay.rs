@@ -18,12 +18,23 @@ pub(super) struct Overlay<'a> {
     pub(super) source: &'a str,
     pub(super) origin: &'a str,
     pub(super) lines: HashMap<String, usize>,
+    /// Key path -> its value as written, for the keys set one value each.
+    pub(super) written: HashMap<String, String>,
 }
 
 impl Overlay<'_> {
     fn note(&mut self, key: &str, span: Range<usize>) {
         self.lines
             .insert(key.to_owned(), line_of(self.source, span.start));
+    }
+
+    /// [`Self::note`], keeping the text of the value as well: a number
+    /// too large for its key's type is shown as written, not as `inf`.
+    fn note_written(&mut self, key: &str, span: Range<usize>) {
+        if let Some(text) = self.source.get(span.clone()) {
+            self.written.insert(key.to_owned(), text.trim().to_owned());
+        }
+        self.note(key, span);
     }
 
     /// Copies `value` into `dst` (converted) and records its line.
@@ -35,7 +46,7 @@ impl Overlay<'_> {
         convert: impl FnOnce(T) -> U,
     ) {
         if let Some(value) = value {
-            self.note(key, value.span());
+            self.note_written(key, value.span());
             *dst = convert(value.into_inner());
         }
     }
@@ -52,7 +63,7 @@ impl Overlay<'_> {
         let Some(value) = value else { return Ok(()) };
         let span = value.span();
         let raw = value.into_inner();
-        self.note(key, span.clone());
+        self.note_written(key, span.clone());
         match usize::try_from(raw) {
             Ok(n) => {
                 *dst = n;
@@ -181,9 +192,9 @@ impl Overlay<'_> {
                     .map(|(i, s)| {
                         let key = format!("tumblers.spheres[{i}]");
                         self.note(&key, s.height.span());
-                        self.note(&format!("{key}.height"), s.height.span());
-                        self.note(&format!("{key}.radius"), s.radius.span());
-                        self.note(&format!("{key}.mass"), s.mass.span());
+                        self.note_written(&format!("{key}.height"), s.height.span());
+                        self.note_written(&format!("{key}.radius"), s.radius.span());
+                        self.note_written(&format!("{key}.mass"), s.mass.span());
                         SphereSpec {
                             height: s.height.into_inner(),
                             radius: s.radius.into_inner(),
