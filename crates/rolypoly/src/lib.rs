@@ -98,9 +98,24 @@ fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
                 )
             }
         }
-        Some(Command::Render(args)) => file_in_folder(&args.out),
+        Some(Command::Render(args)) => {
+            file_in_folder(&args.out)?;
+            png_named(&args.out)
+        }
         Some(Command::MakeTumblerObj(args)) => file_in_folder(&args.out),
         Some(Command::Simulate(_)) => Ok(()),
+    }
+}
+
+/// A frame is written as PNG whatever its name says, so a name that says
+/// another format (`frame.jpg`) is refused rather than left to mislead.
+fn png_named(out: &Path) -> anyhow::Result<()> {
+    match out.extension().and_then(|e| e.to_str()) {
+        Some(ext) if !ext.eq_ignore_ascii_case("png") => anyhow::bail!(
+            "cannot write `{}`: frames are PNG images; name the file `.png`",
+            out.display()
+        ),
+        _ => Ok(()),
     }
 }
 

@@ -330,6 +330,19 @@ fn render_rejects_bad_sizes_and_meshes_cleanly() {
         err.contains("the folder `/no/such/folder` does not exist"),
         "{err}"
     );
+    // A frame is a PNG, whatever the name asks for.
+    let jpeg = scratch("frame.jpg");
+    let _ = std::fs::remove_file(&jpeg);
+    let err = assert_clean_failure(&rolypoly(&[
+        "render",
+        "--out",
+        jpeg.to_str().expect("UTF-8 path"),
+    ]));
+    assert!(
+        err.contains("frame.jpg") && err.contains("frames are PNG images"),
+        "{err}"
+    );
+    assert!(!jpeg.exists(), "nothing is written under a misleading name");
     let err = assert_clean_failure(&rolypoly(&[
         "make-tumbler-obj",
         "--out",
