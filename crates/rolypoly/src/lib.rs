@@ -100,19 +100,23 @@ fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
         }
         Some(Command::Render(args)) => {
             file_in_folder(&args.out)?;
-            png_named(&args.out)
+            named_for(&args.out, "png", "frames are PNG images")
         }
-        Some(Command::MakeTumblerObj(args)) => file_in_folder(&args.out),
+        Some(Command::MakeTumblerObj(args)) => {
+            file_in_folder(&args.out)?;
+            named_for(&args.out, "obj", "the mesh is a Wavefront OBJ file")
+        }
         Some(Command::Simulate(_)) => Ok(()),
     }
 }
 
-/// A frame is written as PNG whatever its name says, so a name that says
-/// another format (`frame.jpg`) is refused rather than left to mislead.
-fn png_named(out: &Path) -> anyhow::Result<()> {
-    match out.extension().and_then(|e| e.to_str()) {
-        Some(ext) if !ext.eq_ignore_ascii_case("png") => anyhow::bail!(
-            "cannot write `{}`: frames are PNG images; name the file `.png`",
+/// An output is written in one format whatever its name says, so a name
+/// that says another (`frame.jpg` for a PNG) is refused rather than left
+/// to mislead. A name without an extension says nothing and is kept.
+fn named_for(out: &Path, extension: &str, format: &str) -> anyhow::Result<()> {
+    match out.extension() {
+        Some(ext) if !ext.eq_ignore_ascii_case(extension) => anyhow::bail!(
+            "cannot write `{}`: {format}; name the file `.{extension}`",
             out.display()
         ),
         _ => Ok(()),

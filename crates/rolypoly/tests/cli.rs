@@ -343,6 +343,8 @@ fn render_rejects_bad_sizes_and_meshes_cleanly() {
         "{err}"
     );
     assert!(!jpeg.exists(), "nothing is written under a misleading name");
+    let err = assert_clean_failure(&rolypoly(&["make-tumbler-obj", "--out", "t.png"]));
+    assert!(err.contains("the mesh is a Wavefront OBJ file"), "{err}");
     let err = assert_clean_failure(&rolypoly(&[
         "make-tumbler-obj",
         "--out",
