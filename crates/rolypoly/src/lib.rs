@@ -73,7 +73,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
 
 /// Fails at once, before any work, where the run's output could never be
 /// written: a file in a folder that does not exist, or screenshots into a
-/// folder that is not one. (A trace file is created before its run.)
+/// folder that is not one.
 fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
     let file_in_folder = |out: &Path| {
         let folder = out.parent().filter(|p| !p.as_os_str().is_empty());
@@ -106,7 +106,10 @@ fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
             file_in_folder(&args.out)?;
             named_for(&args.out, "obj", "the mesh is a Wavefront OBJ file")
         }
-        Some(Command::Simulate(_)) => Ok(()),
+        Some(Command::Simulate(args)) => match &args.trace {
+            Some(trace) if !trace::is_stdout(trace) => file_in_folder(trace),
+            _ => Ok(()),
+        },
     }
 }
 

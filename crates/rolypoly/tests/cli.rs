@@ -161,6 +161,11 @@ fn unwritable_trace_names_the_file() {
     ]);
     let err = assert_clean_failure(&output);
     assert!(err.contains("/no/such/dir/t.jsonl"), "{err}");
+    // Worded as for every other output in a missing folder.
+    assert!(
+        err.contains("the folder `/no/such/dir` does not exist"),
+        "{err}"
+    );
 }
 
 #[test]
