@@ -77,19 +77,15 @@ impl Bounds {
 
 impl fmt::Display for Bounds {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let value = |end: End| match end {
+            End::Incl(v) | End::Excl(v) => number_text(v),
+        };
+        let (lo, hi) = (value(self.lo), value(self.hi));
         match (self.lo, self.hi) {
-            (End::Incl(lo), End::Incl(hi)) => {
-                write!(f, "{} ..= {}", number_text(lo), number_text(hi))
-            }
-            (End::Incl(lo), End::Excl(hi)) => {
-                write!(f, ">= {} and < {}", number_text(lo), number_text(hi))
-            }
-            (End::Excl(lo), End::Incl(hi)) => {
-                write!(f, "> {} and <= {}", number_text(lo), number_text(hi))
-            }
-            (End::Excl(lo), End::Excl(hi)) => {
-                write!(f, "> {} and < {}", number_text(lo), number_text(hi))
-            }
+            (End::Incl(_), End::Incl(_)) => write!(f, "{lo} ..= {hi}"),
+            (End::Incl(_), End::Excl(_)) => write!(f, ">= {lo} and < {hi}"),
+            (End::Excl(_), End::Incl(_)) => write!(f, "> {lo} and <= {hi}"),
+            (End::Excl(_), End::Excl(_)) => write!(f, "> {lo} and < {hi}"),
         }
     }
 }
