@@ -29,12 +29,13 @@ struct Run {
     end: Quality,
 }
 
-/// One engine's share of a run: its time in `step` so far and the worst
-/// quality seen.
+/// One engine's share of a run: its time in `step` so far, the worst
+/// quality seen and the quality after its last turn.
 struct Timing<'a> {
     engine: &'a mut dyn PitEngine,
     timed: f64,
     worst: Quality,
+    last: Quality,
 }
 
 impl Timing<'_> {
@@ -46,7 +47,8 @@ impl Timing<'_> {
             self.timed += start.elapsed().as_secs_f64();
         }
         self.engine.read(&mut read.0, &mut read.1);
-        self.worst = self.worst.worst(measure(pit, &read.0, &read.1));
+        self.last = measure(pit, &read.0, &read.1);
+        self.worst = self.worst.worst(self.last);
     }
 }
 
@@ -62,6 +64,7 @@ fn run_in_turn(engines: [&mut dyn PitEngine; 2], pit: &Pit, seconds: f64) -> [Ru
         engine,
         timed: 0.0,
         worst: Quality::default(),
+        last: Quality::default(),
     });
     let mut done = 0;
     while done < steps {
@@ -71,13 +74,11 @@ fn run_in_turn(engines: [&mut dyn PitEngine; 2], pit: &Pit, seconds: f64) -> [Ru
         }
         done += now;
     }
-    timings.map(|t| {
-        t.engine.read(&mut read.0, &mut read.1);
-        Run {
-            steps_per_second: steps as f64 / t.timed,
-            worst: t.worst,
-            end: measure(pit, &read.0, &read.1),
-        }
+    // The last turn ends the run: its quality is the end's.
+    timings.map(|t| Run {
+        steps_per_second: steps as f64 / t.timed,
+        worst: t.worst,
+        end: t.last,
     })
 }
 
