@@ -7,6 +7,11 @@ use glam::DVec3;
 /// From this many live balls on, work over every ball runs on all threads.
 pub(crate) const PARALLEL_BALLS: usize = 2048;
 
+/// From this many balls on, a pass that does little per ball (a copy, a
+/// gather, a sum) runs on all threads. Below, waking the other threads and
+/// waiting for them costs more than the pass.
+pub(crate) const PARALLEL_LIGHT_PASSES: usize = 32768;
+
 /// What colour a ball has taken on (P5): white until it hits something.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Tint {
@@ -64,7 +69,7 @@ impl Clone for Balls {
             tint.clone_from(&source.tint);
             alive.clone_from(&source.alive);
         };
-        if source.len() >= PARALLEL_BALLS {
+        if source.len() >= PARALLEL_LIGHT_PASSES {
             rayon::join(motion, rest);
         } else {
             motion();

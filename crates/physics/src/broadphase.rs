@@ -5,7 +5,7 @@
 //! nothing once warm. Pairs come out in a fixed order (by cell, then index),
 //! which keeps the solver deterministic.
 
-use crate::balls::PARALLEL_BALLS;
+use crate::balls::PARALLEL_LIGHT_PASSES;
 use glam::{DVec3, Vec4};
 use rayon::prelude::*;
 
@@ -81,7 +81,7 @@ impl Grid {
                 u32::MAX
             }
         };
-        if positions.len() >= PARALLEL_BALLS {
+        if positions.len() >= PARALLEL_LIGHT_PASSES {
             ball_cell.par_extend(positions.par_iter().zip(alive).map(cell_of));
         } else {
             ball_cell.extend(positions.iter().zip(alive).map(cell_of));

@@ -3,7 +3,7 @@
 
 use crate::warm::WarmPart;
 
-use super::{Pair, RowBand};
+use super::{Pair, PairSlots, RowBand};
 
 /// Below this many ball pairs a stage runs on one thread: handing work to
 /// other threads costs more than it saves. The result is the same either way.
@@ -99,6 +99,12 @@ pub(super) trait Band: Send {
 }
 
 impl Band for Vec<Pair> {
+    fn items(&self) -> usize {
+        self.len()
+    }
+}
+
+impl Band for Vec<PairSlots> {
     fn items(&self) -> usize {
         self.len()
     }

@@ -1,6 +1,7 @@
 //! Which contacts act on each body in a stage: a lone impact may bounce,
 //! a crowded one may not.
 
+use crate::balls::PARALLEL_LIGHT_PASSES;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -72,9 +73,6 @@ fn other_side(body: BodyRef) -> u32 {
 }
 
 impl Crowd {
-    /// From this many balls on, a reset runs on all threads.
-    const PARALLEL_RESET: usize = 16384;
-
     /// Forgets which balls the project stage will ask about.
     pub(super) fn forget_asked(&mut self, balls: usize) {
         self.asked.resize_with(balls, AtomicBool::default);
@@ -115,7 +113,7 @@ impl Crowd {
             }
         };
         self.balls.resize(asked.len(), BallCrowd::default());
-        if self.balls.len() >= Crowd::PARALLEL_RESET {
+        if self.balls.len() >= PARALLEL_LIGHT_PASSES {
             self.balls.par_iter_mut().enumerate().for_each(restart);
         } else {
             self.balls.iter_mut().enumerate().for_each(restart);
@@ -125,7 +123,7 @@ impl Crowd {
         if only_asked && !asked.iter().any(|a| a.load(Ordering::Relaxed)) {
             return;
         }
-        contacts.sweep_slots(&mut self.balls, &|p, balls, first| {
+        contacts.sweep_pairs(&mut self.balls, &|p, balls, first| {
             if counts(p) {
                 if wanted(p.i as usize) {
                     balls[p.i as usize - first].add(p.j, p.normal);

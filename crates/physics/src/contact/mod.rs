@@ -144,6 +144,10 @@ impl Pair {
     }
 }
 
+/// The slots of a pair's two balls, `[i, j]`: all that a sweep over the
+/// balls' positions reads, a seventh of a [`Pair`] to stream from memory.
+pub(crate) type PairSlots = [u32; 2];
+
 /// A ball touching one of the room's walls, or about to: the second most
 /// common contact in a crowded room, so it is kept small; the normal,
 /// restitution and friction are the wall's.
@@ -263,6 +267,8 @@ fn accumulate(impulse: &mut f64, mass: f64, vn: f64, target: f64) -> f64 {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Contacts {
     pub bands: Vec<Vec<Pair>>,
+    /// Per band, the slots of its pairs, in the same order.
+    pub pair_slots: Vec<Vec<PairSlots>>,
     /// First slot of each grid layer, and one past the last slot.
     pub layers: Vec<usize>,
     /// Pairs in all bands, counted once they are filled.
@@ -284,6 +290,8 @@ impl Contacts {
     pub fn reset(&mut self, layers: usize) {
         self.bands.resize_with(layers, Vec::new);
         self.bands.iter_mut().for_each(Vec::clear);
+        self.pair_slots.resize_with(layers, Vec::new);
+        self.pair_slots.iter_mut().for_each(Vec::clear);
         self.pair_count = 0;
         self.walls.clear();
         self.others.clear();
@@ -292,6 +300,11 @@ impl Contacts {
     /// Counts the pairs once the bands are filled.
     pub fn count_pairs(&mut self) {
         self.pair_count = self.bands.iter().map(Vec::len).sum();
+        debug_assert_eq!(
+            self.pair_count,
+            self.pair_slots.iter().map(Vec::len).sum::<usize>(),
+            "a pair without its slots"
+        );
     }
 
     pub fn pair_count(&self) -> usize {
@@ -337,17 +350,29 @@ impl Contacts {
     }
 
     /// One sweep of `solve(pair, slots, first)` over every pair, on a
-    /// per-slot quantity such as the balls' positions (see
-    /// [`sweep_bands`]).
-    pub fn sweep_slots<S, F>(&mut self, slots: &mut [S], solve: &F)
+    /// per-slot quantity such as the balls' crowds (see [`sweep_bands`]).
+    pub fn sweep_pairs<S, F>(&mut self, slots: &mut [S], solve: &F)
     where
         S: Send,
-        F: Fn(&mut Pair, &mut [S], usize) + Sync,
+        F: Fn(&Pair, &mut [S], usize) + Sync,
     {
         let band = |band: &mut Vec<Pair>, slots: &mut [S], first: usize| {
-            band.iter_mut().for_each(|p| solve(p, slots, first));
+            band.iter().for_each(|p| solve(p, slots, first));
         };
         sweep_bands(&mut self.bands, &self.layers, slots, &band);
+    }
+
+    /// As [`Contacts::sweep_pairs`] for a sweep that needs only each
+    /// pair's two slots, such as one over the balls' positions.
+    pub fn sweep_pair_slots<S, F>(&mut self, slots: &mut [S], solve: &F)
+    where
+        S: Send,
+        F: Fn(PairSlots, &mut [S], usize) + Sync,
+    {
+        let band = |band: &mut Vec<PairSlots>, slots: &mut [S], first: usize| {
+            band.iter().for_each(|&p| solve(p, slots, first));
+        };
+        sweep_bands(&mut self.pair_slots, &self.layers, slots, &band);
     }
 
     /// Fills the rows from the pairs that `row` chooses, band by band and in

@@ -3,7 +3,7 @@
 //! within the step, so that nothing tunnels into anything.
 
 use crate::balls::PARALLEL_BALLS;
-use crate::contact::{BodyRef, Contact, Pair, WallContact};
+use crate::contact::{BodyRef, Contact, Pair, PairSlots, WallContact};
 use crate::room::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -38,7 +38,7 @@ impl World {
         let grid = &self.grid;
         contacts.reset(grid.layer_count());
         grid.layer_slots(&mut contacts.layers);
-        let find_pairs = |(z, band): (usize, &mut Vec<Pair>)| {
+        let find_pairs = |(z, (band, slots)): (usize, (&mut Vec<Pair>, &mut Vec<PairSlots>))| {
             grid.for_each_close_pair_in_layer(spheres, z, |i, j| {
                 let d = balls.position[i] - balls.position[j];
                 let dist = d.length();
@@ -55,6 +55,7 @@ impl World {
                     let (n, gap) = impact_normal(d, relative, reach, dt).unwrap_or((d / dist, gap));
                     // Approach speed before anything moves: what restitution acts on.
                     band.push(Pair::new(i, j, n, gap, relative.dot(n)));
+                    slots.push([i as u32, j as u32]);
                 }
             });
         };
@@ -64,10 +65,12 @@ impl World {
             contacts
                 .bands
                 .par_iter_mut()
+                .zip(&mut contacts.pair_slots)
                 .enumerate()
                 .for_each(find_pairs);
         } else {
-            contacts.bands.iter_mut().enumerate().for_each(find_pairs);
+            let bands = contacts.bands.iter_mut().zip(&mut contacts.pair_slots);
+            bands.enumerate().for_each(find_pairs);
         }
         contacts.count_pairs();
 
@@ -79,8 +82,8 @@ impl World {
         let partners = &mut self.ball_partners;
         partners.clear();
         partners.resize(balls.len(), 0);
-        contacts.sweep_slots(partners, &|p, partners, first| {
-            for k in [p.i as usize - first, p.j as usize - first] {
+        contacts.sweep_pair_slots(partners, &|[i, j], partners, first| {
+            for k in [i as usize - first, j as usize - first] {
                 partners[k] = partners[k].saturating_add(1);
             }
         });

@@ -20,7 +20,7 @@
 //! Everything runs in a fixed order on `f64`, so the same configuration,
 //! seed and inputs give bit-identical states (P10).
 
-use crate::balls::{Balls, PARALLEL_BALLS, Tint};
+use crate::balls::{Balls, PARALLEL_BALLS, PARALLEL_LIGHT_PASSES, Tint};
 use crate::broadphase::Grid;
 use crate::config::{Rgb, WorldConfig};
 use crate::contact::{
@@ -93,7 +93,7 @@ where
     B: Sync,
     F: Fn(&mut A, &B) + Sync,
 {
-    if items.len() >= PARALLEL_BALLS {
+    if items.len() >= PARALLEL_LIGHT_PASSES {
         items.par_iter_mut().zip(with).for_each(|(a, b)| f(a, b));
     } else {
         items.iter_mut().zip(with).for_each(|(a, b)| f(a, b));
@@ -113,7 +113,7 @@ where
     const BATCH: usize = 64;
     let run = |r: usize| part(r * RUN..((r + 1) * RUN).min(count));
     let runs = count.div_ceil(RUN);
-    if count < PARALLEL_BALLS {
+    if count < PARALLEL_LIGHT_PASSES {
         return (0..runs).map(run).fold(T::default(), |a, b| a + b);
     }
     let mut sums = [T::default(); BATCH];
@@ -576,7 +576,7 @@ impl World {
         let (from, to) = (&self.balls, &mut self.sorted);
         fn gather<T: Copy + Send + Sync>(to: &mut Vec<T>, from: &[T], order: &[u32]) {
             to.clear();
-            if order.len() >= PARALLEL_BALLS {
+            if order.len() >= PARALLEL_LIGHT_PASSES {
                 to.par_extend(order.par_iter().map(|&id| from[id as usize]));
             } else {
                 to.extend(order.iter().map(|&id| from[id as usize]));
@@ -606,7 +606,7 @@ impl World {
                     *x = from[slot as usize];
                 }
             };
-            if to.len() >= PARALLEL_BALLS {
+            if to.len() >= PARALLEL_LIGHT_PASSES {
                 to.par_iter_mut().enumerate().for_each(put);
             } else {
                 to.iter_mut().enumerate().for_each(put);

@@ -1,7 +1,7 @@
 //! Step 6: overlaps the solver left are pushed apart, never adding
 //! energy.
 
-use crate::contact::{BodyRef, Pair};
+use crate::contact::{BodyRef, Pair, PairSlots};
 use crate::room::Surface;
 use glam::{DQuat, DVec3};
 use std::sync::Arc;
@@ -38,8 +38,8 @@ impl World {
         let mut pushed = false;
         for _ in 0..PUSH_SWEEPS {
             let pushed_now = AtomicBool::new(false);
-            let push = |p: &mut Pair, position: &mut [DVec3], first: usize| {
-                let (i, j) = (p.i as usize, p.j as usize);
+            let push = |[i, j]: PairSlots, position: &mut [DVec3], first: usize| {
+                let (i, j) = (i as usize, j as usize);
                 let d = position[i - first] - position[j - first];
                 let reach = (radius[i] + radius[j]) * (1.0 - SUNK_SLOP);
                 // Most pairs are not sunk: tell them without a square root.
@@ -59,7 +59,7 @@ impl World {
                     }
                 }
             };
-            self.contacts.sweep_slots(&mut balls.position, &push);
+            self.contacts.sweep_pair_slots(&mut balls.position, &push);
             if !pushed_now.into_inner() {
                 break;
             }
