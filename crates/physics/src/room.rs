@@ -87,6 +87,12 @@ impl Room {
         }
     }
 
+    /// The distance from `p` to the nearest surface's plane: the least of
+    /// [`Room::distance`] over all of them.
+    pub fn nearest_distance(&self, p: DVec3) -> f64 {
+        (p - self.min).min(self.max - p).min_element()
+    }
+
     /// The point of a surface's plane nearest to `p`.
     pub fn foot(&self, surface: Surface, p: DVec3) -> DVec3 {
         p - surface.inward_normal() * self.distance(surface, p)
@@ -119,6 +125,24 @@ mod tests {
             let d = room.distance(s, centre);
             let moved = room.distance(s, centre + 0.1 * s.inward_normal());
             assert!(moved > d, "{s:?}");
+        }
+    }
+
+    #[test]
+    fn the_nearest_distance_is_the_least_of_every_surface() {
+        let room = Room::new(DVec3::new(4.0, 3.0, 5.0));
+        let mut rng = crate::rng::Rng::new(5);
+        for _ in 0..200 {
+            let p = DVec3::new(
+                rng.range(-2.5, 2.5),
+                rng.range(-0.5, 3.5),
+                rng.range(-3.0, 3.0),
+            );
+            let least = Surface::ALL
+                .iter()
+                .map(|&s| room.distance(s, p))
+                .fold(f64::INFINITY, f64::min);
+            assert_eq!(room.nearest_distance(p), least, "{p}");
         }
     }
 

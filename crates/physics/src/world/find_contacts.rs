@@ -90,6 +90,18 @@ impl World {
         let partners = &self.ball_partners;
         let touch_walls = |i: usize, into: &mut Vec<WallContact>| {
             let crowded = partners[i] > 0;
+            // Most balls of a crowd lie beyond any wall's reach below, and
+            // beyond the nearest wall is beyond them all (with a slop's
+            // margin for rounding).
+            let widest = if crowded {
+                (speed[i] * dt).max(reach_cap)
+            } else {
+                0.0
+            };
+            let clearance = room.nearest_distance(balls.position[i]) - balls.radius[i];
+            if clearance > widest + 2.0 * TOUCH_SLOP {
+                return;
+            }
             for s in Surface::ALL {
                 let gap = room.distance(s, balls.position[i]) - balls.radius[i];
                 let n = s.inward_normal();
