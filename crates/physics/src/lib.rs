@@ -24,6 +24,7 @@ mod events;
 mod fireball;
 mod rng;
 mod room;
+mod threads;
 mod tumbler;
 mod warm;
 mod world;

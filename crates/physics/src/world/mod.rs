@@ -30,6 +30,7 @@ use crate::events::Event;
 use crate::fireball::Fireball;
 use crate::rng::Rng;
 use crate::room::Room;
+use crate::threads::with_workers_awake;
 use crate::tumbler::{Tumbler, TumblerShape};
 use crate::warm::WarmStart;
 use glam::{DMat3, DVec3, Vec4};
@@ -395,11 +396,11 @@ impl World {
     /// step is retaken from its start with half the warm start, and then
     /// without. Either way energy never grows.
     pub fn step(&mut self) {
-        // A crowded world's step runs on a worker thread: its forty-odd
-        // parallel stages then hand work to the other workers, which are
-        // awake, instead of waking the caller's thread after each one.
+        // A crowded world's step runs on a worker thread, the others kept
+        // awake: its dozens of parallel stages then start on all threads at
+        // once (see `threads`), instead of waking a sleeping one each time.
         if self.balls.len() >= PARALLEL_BALLS || self.contacts.pair_count() >= PARALLEL_PAIRS {
-            rayon::scope(|_| self.step_here());
+            with_workers_awake(|| self.step_here());
         } else {
             self.step_here();
         }
