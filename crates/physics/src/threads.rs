@@ -9,6 +9,7 @@
 //! the time.
 
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
 
 /// Runs `work` on a worker thread, the pool's other workers kept awake and
 /// looking for work until it returns. Allocates nothing.
@@ -47,11 +48,21 @@ fn keep_awake(count: usize, done: &AtomicBool, owner: &AtomicUsize) {
     }
 }
 
-/// Runs pending jobs of the pool, or spins, until `done`.
+/// How long a keeper looks for work without finding any before it gives
+/// up: longer than a crowded step's stretches on one thread, yet short.
+/// Two steps at once in one pool may each bury the other's keeper under
+/// their own work on the same thread; each keeper would then wait for the
+/// other forever, where giving up costs this pause.
+const PATIENCE: Duration = Duration::from_millis(2);
+
+/// Runs pending jobs of the pool, or spins, until `done`, or until it has
+/// found no work for [`PATIENCE`].
 fn look_for_work_until(done: &AtomicBool) {
+    let mut last_work = Instant::now();
     while !done.load(Ordering::Acquire) {
         match rayon::yield_now() {
-            Some(rayon::Yield::Executed) => {}
+            Some(rayon::Yield::Executed) => last_work = Instant::now(),
+            Some(rayon::Yield::Idle) if last_work.elapsed() > PATIENCE => return,
             Some(rayon::Yield::Idle) => std::hint::spin_loop(),
             None => return,
         }
@@ -85,6 +96,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn two_crowded_steps_at_once_in_one_pool_both_finish() {
+        // Each step's keeper may end up on the thread that holds the other
+        // step, buried under it: the keepers must give way, not wait for
+        // each other.
+        for threads in [2, 3] {
+            let pool = pool(threads);
+            std::thread::scope(|s| {
+                for _ in 0..2 {
+                    s.spawn(|| {
+                        for _ in 0..300 {
+                            let sum: u64 = pool.install(|| {
+                                with_workers_awake(|| {
+                                    (0..20_000u64).into_par_iter().map(|k| k % 7).sum()
+                                })
+                            });
+                            assert_eq!(sum, (0..20_000u64).map(|k| k % 7).sum());
+                        }
+                    });
+                }
+            });
+        }
+    }
+
+    #[test]
+    fn a_keeper_that_finds_no_work_gives_up() {
+        // As when the step it waits for lies buried under it.
+        let never = AtomicBool::new(false);
+        let start = Instant::now();
+        pool(2).install(|| look_for_work_until(&never));
+        let waited = start.elapsed();
+        assert!(waited >= PATIENCE, "gave up after {waited:?}");
     }
 
     #[test]
