@@ -103,6 +103,17 @@ pub(super) struct Sources {
 }
 
 impl Sources {
+    /// Nothing set yet, for a scene from `origin` (a file or not).
+    pub(super) fn new(origin: &str, from_file: bool) -> Sources {
+        Sources {
+            origin: origin.to_owned(),
+            from_file,
+            lines: HashMap::new(),
+            written: HashMap::new(),
+            options: HashMap::new(),
+        }
+    }
+
     /// The location to blame for `key`, and whether the value is a default
     /// the file did not mention.
     fn locate(&self, key: &str) -> (Location, bool) {

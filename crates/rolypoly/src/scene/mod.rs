@@ -149,13 +149,7 @@ pub fn parse_scene_with(
 /// Checks a scene that did not come from a file (for instance one edited at
 /// run time) against the same rules as a scene file.
 pub fn validate(scene: &Scene) -> Result<(), SceneError> {
-    let sources = Sources {
-        origin: BUILTIN_ORIGIN.to_owned(),
-        from_file: false,
-        lines: HashMap::new(),
-        written: HashMap::new(),
-        options: HashMap::new(),
-    };
+    let sources = Sources::new(BUILTIN_ORIGIN, false);
     Checker {
         scene,
         sources: &sources,
@@ -165,13 +159,7 @@ pub fn validate(scene: &Scene) -> Result<(), SceneError> {
 
 fn build(source: Option<&str>, origin: &str, overrides: &Overrides) -> Result<Scene, SceneError> {
     let mut scene = Scene::default();
-    let mut sources = Sources {
-        origin: origin.to_owned(),
-        from_file: source.is_some(),
-        lines: HashMap::new(),
-        written: HashMap::new(),
-        options: HashMap::new(),
-    };
+    let mut sources = Sources::new(origin, source.is_some());
     if let Some(source) = source {
         let file: FileScene =
             toml::from_str(source).map_err(|e| syntax_error(&e, source, origin))?;
