@@ -7,8 +7,10 @@
 //! turns of half a simulated second, on the same threads (all of the
 //! machine's, or `RAYON_NUM_THREADS`; Rapier is built with its `parallel`
 //! feature); only `step` calls are timed. Quality is measured after every
-//! turn (untimed) and at the end. After the 10k and 100k pits it says whether the
-//! engine's targets for them were met.
+//! turn (untimed) and at the end. The ratio of the speeds is also printed
+//! turn by turn (lowest, median, highest), to show how much the machine
+//! moved it. After the 10k and 100k pits it says whether the engine's
+//! targets for them were met.
 
 use glam::DVec3;
 use rolypoly_bench::ours::OurPit;
@@ -27,6 +29,8 @@ struct Run {
     worst: Quality,
     /// At the end (energy, rest).
     end: Quality,
+    /// Seconds spent in `step` in each turn.
+    turns: Vec<f64>,
 }
 
 /// One engine's share of a run: its time in `step` so far, the worst
@@ -34,6 +38,7 @@ struct Run {
 struct Timing<'a> {
     engine: &'a mut dyn PitEngine,
     timed: f64,
+    turns: Vec<f64>,
     worst: Quality,
     last: Quality,
 }
@@ -41,11 +46,14 @@ struct Timing<'a> {
 impl Timing<'_> {
     /// Steps `steps` times, timing only the steps, then measures quality.
     fn advance(&mut self, pit: &Pit, steps: usize, read: &mut (Vec<DVec3>, Vec<DVec3>)) {
+        let mut turn = 0.0;
         for _ in 0..steps {
             let start = Instant::now();
             self.engine.step();
-            self.timed += start.elapsed().as_secs_f64();
+            turn += start.elapsed().as_secs_f64();
         }
+        self.timed += turn;
+        self.turns.push(turn);
         self.engine.read(&mut read.0, &mut read.1);
         self.last = measure(pit, &read.0, &read.1);
         self.worst = self.worst.worst(self.last);
@@ -63,6 +71,7 @@ fn run_in_turn(engines: [&mut dyn PitEngine; 2], pit: &Pit, seconds: f64) -> [Ru
     let mut timings = engines.map(|engine| Timing {
         engine,
         timed: 0.0,
+        turns: Vec::new(),
         worst: Quality::default(),
         last: Quality::default(),
     });
@@ -79,7 +88,21 @@ fn run_in_turn(engines: [&mut dyn PitEngine; 2], pit: &Pit, seconds: f64) -> [Ru
         steps_per_second: steps as f64 / t.timed,
         worst: t.worst,
         end: t.last,
+        turns: t.turns,
     })
+}
+
+/// The ratio of the engines' speeds in each turn: lowest, median and
+/// highest. A turn's ratio moves with the machine's speed while the two
+/// take it, so the spread says how far to trust the run's ratio.
+fn ratio_by_turn(ours: &Run, rapier: &Run) -> Option<[f64; 3]> {
+    let mut ratios: Vec<f64> = (ours.turns.iter().zip(&rapier.turns))
+        .map(|(&o, &r)| r / o)
+        .filter(|r| r.is_finite())
+        .collect();
+    ratios.sort_by(f64::total_cmp);
+    let (&lowest, &highest) = (ratios.first()?, ratios.last()?);
+    Some([lowest, ratios[ratios.len() / 2], highest])
 }
 
 fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
@@ -210,6 +233,14 @@ fn main() {
         let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
         print_row(n, "rolypoly", &our_run, ratio);
         print_row(n, &name, &rapier_run, 1.0);
+        if let Some([lowest, median, highest]) = ratio_by_turn(&our_run, &rapier_run) {
+            println!(
+                "{:>7} ratio turn by turn ({} turns): lowest {lowest:.2}, median {median:.2}, \
+                 highest {highest:.2}",
+                "",
+                our_run.turns.len()
+            );
+        }
         println!(
             "{:>7} rolypoly steps retaken with less warm start: {retaken}",
             ""
