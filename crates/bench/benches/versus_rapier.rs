@@ -33,11 +33,10 @@ struct Run {
     turns: Vec<f64>,
 }
 
-/// One engine's share of a run: its time in `step` so far, the worst
+/// One engine's share of a run: its time in `step` turn by turn, the worst
 /// quality seen and the quality after its last turn.
 struct Timing<'a> {
     engine: &'a mut dyn PitEngine,
-    timed: f64,
     turns: Vec<f64>,
     worst: Quality,
     last: Quality,
@@ -52,7 +51,6 @@ impl Timing<'_> {
             self.engine.step();
             turn += start.elapsed().as_secs_f64();
         }
-        self.timed += turn;
         self.turns.push(turn);
         self.engine.read(&mut read.0, &mut read.1);
         self.last = measure(pit, &read.0, &read.1);
@@ -70,7 +68,6 @@ fn run_in_turn(engines: [&mut dyn PitEngine; 2], pit: &Pit, seconds: f64) -> [Ru
     let mut read = (Vec::new(), Vec::new());
     let mut timings = engines.map(|engine| Timing {
         engine,
-        timed: 0.0,
         turns: Vec::new(),
         worst: Quality::default(),
         last: Quality::default(),
@@ -85,7 +82,7 @@ fn run_in_turn(engines: [&mut dyn PitEngine; 2], pit: &Pit, seconds: f64) -> [Ru
     }
     // The last turn ends the run: its quality is the end's.
     timings.map(|t| Run {
-        steps_per_second: steps as f64 / t.timed,
+        steps_per_second: steps as f64 / t.turns.iter().sum::<f64>(),
         worst: t.worst,
         end: t.last,
         turns: t.turns,
