@@ -7,9 +7,10 @@ use thiserror::Error;
 pub enum RenderError {
     #[error(
         "no usable graphics adapter was found (backends tried: {backends}). \
-         Install a Vulkan driver (on Debian or Ubuntu: `apt-get install mesa-vulkan-drivers`, \
-         which includes the lavapipe software renderer), or try the OpenGL backend with \
-         WGPU_BACKEND=gl"
+         Install a Vulkan driver and the Vulkan loader (on Debian or Ubuntu: `apt-get install \
+         libvulkan1 mesa-vulkan-drivers`; Mesa's driver includes the lavapipe software \
+         renderer, and a GPU's own driver needs the loader too), or try the OpenGL backend \
+         with WGPU_BACKEND=gl"
     )]
     NoAdapter { backends: String },
     #[error("the graphics adapter {adapter} refused to open a device: {source}")]

@@ -292,6 +292,30 @@ fn render_writes_a_png_of_the_requested_size() {
 }
 
 #[test]
+fn render_without_a_graphics_adapter_is_a_clear_error_and_writes_nothing() {
+    let out = scratch("no-adapter.png");
+    let _ = std::fs::remove_file(&out);
+    let out_str = out.to_str().expect("UTF-8 path");
+    // Vulkan only, and its loader pointed at a driver list that does not
+    // exist (the older and the newer name of the variable): no adapter.
+    let output = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(["render", "--out", out_str])
+        .env("WGPU_BACKEND", "vulkan")
+        .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
+        .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
+        .output()
+        .expect("the rolypoly binary runs");
+    let err = assert_clean_failure(&output);
+    assert!(err.contains("no usable graphics adapter"), "{err}");
+    assert!(
+        err.contains("libvulkan1"),
+        "the error names the loader: {err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "one message: {err}");
+    assert!(!out.exists(), "no PNG is written without an adapter");
+}
+
+#[test]
 fn render_rejects_bad_sizes_and_meshes_cleanly() {
     let out = scratch("never.png");
     let out_str = out.to_str().expect("UTF-8 path");
