@@ -70,9 +70,15 @@ impl Gpu {
         }
         let backends = attempts
             .iter()
-            .map(|b| format!("{b:?}"))
+            .map(|&b| backend_names(b & wgpu::Instance::enabled_backend_features()))
+            .filter(|names| !names.is_empty())
             .collect::<Vec<_>>()
             .join(", then ");
+        let backends = if backends.is_empty() {
+            "none, for this build of the program has none of those asked for".to_string()
+        } else {
+            backends
+        };
         Err(RenderError::NoAdapter { backends })
     }
 
@@ -116,5 +122,38 @@ impl Gpu {
             .filter(|&n| n <= wanted)
             .find(|&n| n == 1 || flags.sample_count_supported(n))
             .unwrap_or(1)
+    }
+}
+
+/// The backends of `set` by their names, as a user knows them: "Vulkan,
+/// Metal".
+fn backend_names(set: wgpu::Backends) -> String {
+    const NAMES: [(wgpu::Backends, &str); 5] = [
+        (wgpu::Backends::VULKAN, "Vulkan"),
+        (wgpu::Backends::METAL, "Metal"),
+        (wgpu::Backends::DX12, "DX12"),
+        (wgpu::Backends::GL, "OpenGL"),
+        (wgpu::Backends::BROWSER_WEBGPU, "WebGPU"),
+    ];
+    NAMES
+        .iter()
+        .filter(|(backend, _)| set.contains(*backend))
+        .map(|&(_, name)| name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn backends_are_named_in_words() {
+        assert_eq!(backend_names(wgpu::Backends::VULKAN), "Vulkan");
+        assert_eq!(
+            backend_names(wgpu::Backends::PRIMARY),
+            "Vulkan, Metal, DX12, WebGPU"
+        );
+        assert_eq!(backend_names(wgpu::Backends::empty()), "");
     }
 }
