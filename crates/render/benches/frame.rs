@@ -3,9 +3,9 @@
 //! Run with `cargo bench -p rolypoly-render`. For each scene it prints frames
 //! per second (waiting for the GPU after every frame), the CPU time our own
 //! code spends building and recording a frame, and the draw calls per frame,
-//! which must not grow with the number of balls. Each scene draws at least a
-//! few frames and goes on for at least two seconds, so a software renderer
-//! finishes in minutes and a GPU's figure averages over thousands of frames.
+//! which must not grow with the number of balls. Each scene draws at least
+//! three frames and for at least two seconds: a software renderer is done
+//! within a minute, and a GPU's figure averages over hundreds of frames.
 
 use rolypoly_physics::{World, WorldConfig};
 use rolypoly_render::{Camera, RenderSettings, SceneView, Snapshot};

@@ -75,7 +75,7 @@ impl Gpu {
             .collect::<Vec<_>>()
             .join(", then ");
         let backends = if backends.is_empty() {
-            "none, for this build of the program has none of those asked for".to_string()
+            "none: this build has none of the backends asked for".to_string()
         } else {
             backends
         };
