@@ -225,12 +225,21 @@ struct BallOut {
     @location(2) @interpolate(flat) color: vec3<f32>,
 };
 
-// Corner `corner` (each coordinate -1 or 1) of the square through the
-// sphere's centre, square to the line of sight from `eye`, that covers the
-// sphere's outline: the cone of rays grazing it meets that plane in a circle
-// of radius r d / sqrt(d^2 - r^2). An eye inside the sphere sees no outline;
+// Corner `corner` (each coordinate -1 or 1) of the square, square to the
+// line of sight from `eye`, that covers the sphere's outline. It stands on the
+// plane that touches the sphere nearest the eye, so that every ray through it
+// meets the sphere, if at all, beyond it: the depth traced for a fragment is
+// never nearer than the square's own, and the GPU may test the square's depth
+// before tracing (see `fs_ball`). The cone of rays grazing the sphere meets
+// that plane, at distance p along the axis, in a circle of radius
+// p r / sqrt(d^2 - r^2). A plane closer to the eye than BALL_SQUARE_NEAREST
+// would be cut away by the camera's near plane, and with it the whole ball;
+// it is moved back to there (the fragment keeps its depth's promise by
+// taking the larger of the two). An eye inside the sphere sees no outline;
 // the square collapses and the ball is not drawn, as a mesh seen from inside
 // is culled.
+const BALL_SQUARE_NEAREST: f32 = 0.06;
+
 fn ball_square_corner(sphere: vec4<f32>, eye: vec3<f32>, corner: vec2<f32>) -> vec3<f32> {
     let centre = sphere.xyz;
     let radius = sphere.w;
@@ -239,12 +248,14 @@ fn ball_square_corner(sphere: vec4<f32>, eye: vec3<f32>, corner: vec2<f32>) -> v
     if d2 <= radius * radius {
         return centre;
     }
-    let axis = to_centre * inverseSqrt(d2);
-    let half = radius * sqrt(d2 / (d2 - radius * radius));
+    let d = sqrt(d2);
+    let axis = to_centre / d;
+    let plane = max(d - radius, min(d, BALL_SQUARE_NEAREST));
+    let half = plane * radius * inverseSqrt(d2 - radius * radius);
     let helper = select(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0), abs(axis.y) > 0.9);
     let side = normalize(cross(axis, helper));
     let up = cross(side, axis);
-    return centre + (side * corner.x + up * corner.y) * half;
+    return eye + axis * plane + (side * corner.x + up * corner.y) * half;
 }
 
 // Where the ray from `eye` through `through` meets the sphere, and how far
@@ -271,6 +282,14 @@ fn trace_ball(sphere: vec4<f32>, eye: vec3<f32>, through: vec3<f32>) -> BallHit 
 fn depth_of(view_proj: mat4x4<f32>, point: vec3<f32>) -> f32 {
     let clip = view_proj * vec4<f32>(point, 1.0);
     return clip.z / clip.w;
+}
+
+// The depth a ball's fragment writes: the traced point's, but never nearer
+// than the square's `square_depth` there, the promise the GPU's early depth
+// test relies on (`@early_depth_test(greater_equal)`, added to the ball
+// entry points where the adapter allows it).
+fn ball_depth(view_proj: mat4x4<f32>, point: vec3<f32>, square_depth: f32) -> f32 {
+    return max(depth_of(view_proj, point), square_depth);
 }
 
 @vertex
@@ -307,7 +326,7 @@ fn fs_ball(in: BallOut) -> BallFragment {
     var out: BallFragment;
     let material = vec4<f32>(BALL_KIND, BALL_SPECULAR, BALL_SHININESS, 0.0);
     out.color = vec4<f32>(blinn_phong(in.color, hit.point, n, material), coverage);
-    out.depth = depth_of(globals.view_proj, hit.point);
+    out.depth = ball_depth(globals.view_proj, hit.point, in.clip.z);
     return out;
 }
 
@@ -382,5 +401,5 @@ fn fs_ball_shadow(in: BallShadowOut) -> @builtin(frag_depth) f32 {
     if hit.miss > 1.0 {
         discard;
     }
-    return depth_of(shadow_face_uniform.view_proj, hit.point);
+    return ball_depth(shadow_face_uniform.view_proj, hit.point, in.clip.z);
 }

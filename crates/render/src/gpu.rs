@@ -87,7 +87,8 @@ impl Gpu {
         let info = adapter.get_info();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("rolypoly"),
-            required_features: wgpu::Features::empty(),
+            // Optional: lets ball fragments be depth-tested before they are traced.
+            required_features: adapter.features() & wgpu::Features::SHADER_EARLY_DEPTH_TEST,
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
             experimental_features: wgpu::ExperimentalFeatures::disabled(),
             memory_hints: wgpu::MemoryHints::Performance,
@@ -108,6 +109,15 @@ impl Gpu {
     pub fn describe(&self) -> String {
         let info = self.adapter.get_info();
         format!("{} ({:?})", info.name, info.backend)
+    }
+
+    /// Whether shaders may promise the GPU how they change a fragment's
+    /// depth, so that it tests the depth before running them (Vulkan,
+    /// OpenGL 4.2 or ES 3.1 and later).
+    pub fn has_early_depth_test(&self) -> bool {
+        self.device
+            .features()
+            .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST)
     }
 
     /// The largest multisample count up to `wanted` that the adapter supports

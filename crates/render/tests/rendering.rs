@@ -380,6 +380,76 @@ fn a_ball_casts_a_round_shadow_on_the_floor() {
     );
 }
 
+/// The early depth test only drops fragments that would have lost the
+/// depth test anyway: a crowd of balls, each hiding others and shadowing
+/// them, comes out the same with it as without it.
+#[test]
+fn early_ball_depth_changes_no_pixel() {
+    let mut config = WorldConfig::default();
+    config.balls.count = 3000;
+    config.room.size = glam::DVec3::new(6.0, 4.0, 6.0);
+    let world = world_at(&config, 1, 0.5);
+    let view = SceneView::from_world(&world, None);
+    let camera = Camera::overview(view.room_size);
+    let (early, late) = default_and(
+        |s| s.early_ball_depth = false,
+        &config,
+        &view,
+        &camera,
+        (320, 180),
+    );
+    let differing = early
+        .pixels()
+        .zip(late.pixels())
+        .filter(|(a, b)| (0..3).any(|c| a.0[c].abs_diff(b.0[c]) > 2))
+        .count();
+    // A pixel where two balls meet at the same depth may go either way.
+    assert!(
+        differing <= 10,
+        "{differing} of {} pixels differ",
+        320 * 180
+    );
+}
+
+/// A ball whose surface is nearer the eye than the camera's near plane (2
+/// cm) is still drawn where it is further than that: its square, which
+/// would stand in front of the near plane, is moved back behind it.
+#[test]
+fn a_ball_a_centimetre_from_the_eye_is_still_drawn() {
+    let (config, mut view, _) = empty_room_and_close_camera();
+    let ball = BallView {
+        position: Vec3::new(0.0, 1.0, 0.0),
+        radius: 0.3,
+        color: Vec3::new(0.9, 0.08, 0.05),
+    };
+    view.balls = vec![ball];
+    let camera = Camera {
+        eye: ball.position + Vec3::new(0.0, 0.0, ball.radius + 0.01),
+        target: ball.position,
+        fov_y_deg: 65.0,
+    };
+    let settings = RenderSettings {
+        msaa: 1,
+        ..RenderSettings::default()
+    };
+    let frame = snapshot(&config, settings, 64, 36)
+        .capture(&view, &camera)
+        .expect("frame");
+    // Seen from a centimetre away the ball fills the view, except a ring
+    // around the middle that is nearer than the near plane.
+    let (w, h) = frame.dimensions();
+    let red = |x: u32, y: u32| {
+        let p = frame.get_pixel(x, y).0;
+        p[0] > 2 * p[1].max(p[2]) && p[0] > 20
+    };
+    let corners = [(0, 0), (w - 1, 0), (0, h - 1), (w - 1, h - 1)];
+    assert!(
+        corners.iter().all(|&(x, y)| red(x, y)),
+        "corners {:?}",
+        corners.map(|(x, y)| frame.get_pixel(x, y).0)
+    );
+}
+
 #[test]
 fn draw_calls_do_not_depend_on_the_ball_count() {
     let mut calls = Vec::new();

@@ -2,7 +2,7 @@
 //! target, with which shader entry points, blending and depth.
 
 use super::bindings::Layouts;
-use super::{DEPTH_FORMAT, HDR_FORMAT};
+use super::{DEPTH_FORMAT, HDR_FORMAT, RenderSettings};
 use crate::instances::{BALL_MATERIAL, BallInstance, Instance};
 use crate::mesh::Vertex;
 use crate::shadow;
@@ -26,17 +26,18 @@ pub(super) struct Pipelines {
 }
 
 impl Pipelines {
-    /// The pipelines for `msaa` samples per pixel, tone mapping into
-    /// `output_format`.
+    /// The pipelines for `settings` (its multisample count and early ball
+    /// depth as the adapter allows), tone mapping into `output_format`.
     pub fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
-        msaa: u32,
+        settings: &RenderSettings,
         output_format: wgpu::TextureFormat,
     ) -> Pipelines {
+        let msaa = settings.msaa;
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("scene.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/scene.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(scene_shader(settings.early_ball_depth).into()),
         });
         let tonemap_shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("tonemap.wgsl"),
@@ -270,4 +271,47 @@ pub(super) fn screen_pipeline(
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// The ball fragment shaders, whose written depth is never nearer than the
+/// square they are drawn on (see `ball_depth` in scene.wgsl).
+const BALL_FRAGMENT_ENTRIES: [&str; 2] = ["fs_ball(", "fs_ball_shadow("];
+
+/// scene.wgsl, with the ball fragment shaders promising the GPU that they
+/// only ever push a fragment's depth back, when `early_ball_depth`: the GPU
+/// may then drop a hidden fragment before tracing its sphere. The promise
+/// is a native feature that not every adapter has, so it is added only
+/// where asked for.
+fn scene_shader(early_ball_depth: bool) -> String {
+    let source = include_str!("../../shaders/scene.wgsl");
+    if !early_ball_depth {
+        return source.to_string();
+    }
+    BALL_FRAGMENT_ENTRIES
+        .iter()
+        .fold(source.to_string(), |s, entry| {
+            s.replace(
+                &format!("@fragment\nfn {entry}"),
+                &format!("@fragment @early_depth_test(greater_equal)\nfn {entry}"),
+            )
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn early_ball_depth_marks_both_ball_fragment_shaders_and_nothing_else() {
+        let marked = "@fragment @early_depth_test(greater_equal)\nfn ";
+        assert!(!scene_shader(false).contains(marked));
+        let early = scene_shader(true);
+        for entry in BALL_FRAGMENT_ENTRIES {
+            assert!(
+                early.contains(&format!("@early_depth_test(greater_equal)\nfn {entry}")),
+                "{entry} is not marked"
+            );
+        }
+        assert_eq!(early.matches(marked).count(), 2);
+    }
 }
