@@ -277,6 +277,9 @@ pub(super) fn screen_pipeline(
 /// square they are drawn on (see `ball_depth` in scene.wgsl).
 const BALL_FRAGMENT_ENTRIES: [&str; 2] = ["fs_ball(", "fs_ball_shadow("];
 
+/// Their promise: the depth they write is never nearer than the fragment's.
+const EARLY_DEPTH_TEST: &str = "@early_depth_test(greater_equal)";
+
 /// scene.wgsl, with the ball fragment shaders promising the GPU that they
 /// only ever push a fragment's depth back, when `early_ball_depth`: the GPU
 /// may then drop a hidden fragment before tracing its sphere. The promise
@@ -292,7 +295,7 @@ fn scene_shader(early_ball_depth: bool) -> String {
         .fold(source.to_string(), |s, entry| {
             s.replace(
                 &format!("@fragment\nfn {entry}"),
-                &format!("@fragment @early_depth_test(greater_equal)\nfn {entry}"),
+                &format!("@fragment {EARLY_DEPTH_TEST}\nfn {entry}"),
             )
         })
 }
@@ -303,15 +306,15 @@ mod tests {
 
     #[test]
     fn early_ball_depth_marks_both_ball_fragment_shaders_and_nothing_else() {
-        let marked = "@fragment @early_depth_test(greater_equal)\nfn ";
-        assert!(!scene_shader(false).contains(marked));
+        let marked = format!("@fragment {EARLY_DEPTH_TEST}\nfn ");
+        assert!(!scene_shader(false).contains(&marked));
         let early = scene_shader(true);
         for entry in BALL_FRAGMENT_ENTRIES {
             assert!(
-                early.contains(&format!("@early_depth_test(greater_equal)\nfn {entry}")),
+                early.contains(&format!("{EARLY_DEPTH_TEST}\nfn {entry}")),
                 "{entry} is not marked"
             );
         }
-        assert_eq!(early.matches(marked).count(), 2);
+        assert_eq!(early.matches(&marked).count(), 2);
     }
 }
