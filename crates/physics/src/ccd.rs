@@ -1,10 +1,13 @@
-//! Exact ball-wall impacts within a step.
+//! Exact impacts within a step: when they happen, and what a wall does.
 //!
 //! Between impacts a ball follows the parabola `x + u t + g t^2 / 2` exactly,
 //! so the time of impact on each wall is a root of a quadratic. Bouncing at
 //! that instant, rather than at the end of the step, is what makes a dropped
 //! ball rebound to e^2 of its height and lets nothing pass through a wall at
-//! any speed.
+//! any speed. Gravity moves two balls alike, so between impacts they close
+//! along a straight line, and their time of impact is a root too.
+
+use glam::DVec3;
 
 /// The first time in `[0, horizon]` at which the distance
 /// `d0 + an t + gn t^2 / 2` to a wall reaches zero while decreasing.
@@ -42,9 +45,139 @@ pub(crate) fn first_impact(d0: f64, an: f64, gn: f64, horizon: f64) -> Option<f6
     accept(lo).or_else(|| accept(hi))
 }
 
+/// The first time in `[0, horizon]` at which two spheres whose centres
+/// differ by `d + v t` touch (their centres `reach` apart) while closing.
+/// Touching or overlapping and closing: an impact now.
+pub(crate) fn first_touch(d: DVec3, v: DVec3, reach: f64, horizon: f64) -> Option<f64> {
+    let closing = d.dot(v);
+    if closing >= 0.0 {
+        return None;
+    }
+    let c = d.length_squared() - reach * reach;
+    if c <= 0.0 {
+        return Some(0.0);
+    }
+    let a = v.length_squared();
+    let disc = closing * closing - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    // The smaller root of a t^2 + 2 closing t + c = 0, in the stable form.
+    let t = c / (-closing + disc.sqrt());
+    (t <= horizon).then_some(t)
+}
+
+/// For two spheres whose centres differ by `d + v t`, apart and closing,
+/// the normal along which their contact is solved within `horizon`, and
+/// the gap left along it at t = 0: the line of centres at first touch if
+/// they touch within the horizon, else at their closest approach in it.
+///
+/// A speculative contact keeps the gap along its normal from closing; taken
+/// along the line of centres at the start, it would stop two balls that
+/// were only passing close by (a ghost collision, which costs energy).
+/// Along these normals it binds only on balls that really meet.
+pub(crate) fn contact_normal(d: DVec3, v: DVec3, reach: f64, horizon: f64) -> Option<(DVec3, f64)> {
+    let a = v.length_squared();
+    let b = d.dot(v);
+    let c = d.length_squared() - reach * reach;
+    if c <= 0.0 || b >= 0.0 || a == 0.0 {
+        return None;
+    }
+    let disc = b * b - a * c;
+    let t = if disc >= 0.0 {
+        c / (-b + disc.sqrt())
+    } else {
+        -b / a
+    };
+    let n = (d + v * t.min(horizon)).normalize();
+    Some((n, d.dot(n) - reach))
+}
+
+/// A ball's velocity `u` and `spin` just after it meets a wall with inward
+/// normal `n`: its normal speed reversed and scaled by `restitution`
+/// (0 to come to rest on it), then Coulomb friction `friction` at the
+/// contact point, at most enough to roll. Returns them with the normal
+/// impulse the wall gave.
+pub(crate) fn bounce_off_wall(
+    (u, spin): (DVec3, DVec3),
+    n: DVec3,
+    (radius, mass, inertia): (f64, f64, f64),
+    restitution: f64,
+    friction: f64,
+) -> (DVec3, DVec3, f64) {
+    let speed = -n.dot(u);
+    let mut u = u + (1.0 + restitution) * speed * n;
+    let mut spin = spin;
+    let normal_impulse = mass * (1.0 + restitution) * speed;
+    let arm = -radius * n;
+    let slip = u + spin.cross(arm);
+    let slip = slip - slip.dot(n) * n;
+    let slip_speed = slip.length();
+    if slip_speed > 0.0 {
+        let j =
+            (friction * normal_impulse).min(slip_speed / (1.0 / mass + radius * radius / inertia));
+        let impulse = -slip / slip_speed * j;
+        u += impulse / mass;
+        spin += arm.cross(impulse) / inertia;
+    }
+    (u, spin, normal_impulse)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn spheres_touch_when_their_centres_are_two_radii_apart() {
+        // 1 m apart, closing at 2 m/s, touching at 0.5 m: at t = 0.25.
+        let d = DVec3::new(1.0, 0.0, 0.0);
+        let v = DVec3::new(-2.0, 0.0, 0.0);
+        let t = first_touch(d, v, 0.5, 1.0).unwrap();
+        assert!((t - 0.25).abs() < 1e-15);
+        assert_eq!(first_touch(d, v, 0.5, 0.2), None);
+        // Leaving, or passing by too far to the side: never.
+        assert_eq!(first_touch(d, -v, 0.5, 1.0), None);
+        let by = DVec3::new(-2.0, 0.0, 0.0);
+        assert_eq!(first_touch(DVec3::new(1.0, 0.6, 0.0), by, 0.5, 9.0), None);
+        // Overlapping and closing: now; overlapping and leaving: never.
+        assert_eq!(
+            first_touch(DVec3::new(0.4, 0.0, 0.0), v, 0.5, 1.0),
+            Some(0.0)
+        );
+        assert_eq!(first_touch(DVec3::new(0.4, 0.0, 0.0), -v, 0.5, 1.0), None);
+    }
+
+    #[test]
+    fn a_glancing_touch_is_found_at_the_right_distance() {
+        let d = DVec3::new(3.0, 0.3, 0.0);
+        let v = DVec3::new(-1.0, 0.0, 0.0);
+        let t = first_touch(d, v, 0.5, 10.0).unwrap();
+        assert!(((d + v * t).length() - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_frictionless_elastic_wall_reverses_the_normal_speed_only() {
+        let u = DVec3::new(1.0, -3.0, 2.0);
+        let (after, spin, impulse) =
+            bounce_off_wall((u, DVec3::ZERO), DVec3::Y, (0.1, 2.0, 0.008), 1.0, 0.0);
+        assert_eq!(after, DVec3::new(1.0, 3.0, 2.0));
+        assert_eq!(spin, DVec3::ZERO);
+        assert!((impulse - 12.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn friction_at_a_wall_never_spins_a_ball_past_rolling() {
+        // Sliding fast with friction enough: it leaves rolling, v = w r.
+        let u = DVec3::new(4.0, -1.0, 0.0);
+        let (r, m) = (0.1, 1.0);
+        let inertia = 0.4 * m * r * r;
+        let (after, spin, _) =
+            bounce_off_wall((u, DVec3::ZERO), DVec3::Y, (r, m, inertia), 0.0, 10.0);
+        let contact_velocity = after + spin.cross(-r * DVec3::Y);
+        assert!(contact_velocity.length() < 1e-12, "{contact_velocity}");
+        // Rolling keeps 5/7 of the sliding speed (angular momentum about the contact).
+        assert!((after.x - 4.0 * 5.0 / 7.0).abs() < 1e-12);
+    }
 
     #[test]
     fn linear_approach() {

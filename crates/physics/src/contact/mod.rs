@@ -339,6 +339,20 @@ impl Contacts {
         }
     }
 
+    /// Calls `change(pair)` on every pair, on all threads when there are
+    /// many: each pair on its own, so the result is the same.
+    pub fn update_pairs<F>(&mut self, change: F)
+    where
+        F: Fn(&mut Pair) + Sync,
+    {
+        let band = |band: &mut Vec<Pair>| band.iter_mut().for_each(&change);
+        if self.pair_count() >= PARALLEL_PAIRS {
+            self.bands.par_iter_mut().for_each(band);
+        } else {
+            self.bands.iter_mut().for_each(band);
+        }
+    }
+
     /// Calls `solve(contact, bodies)` for every contact with a tumbler.
     fn sweep_tumblers<G>(&mut self, bodies: &mut Bodies, mut solve: G)
     where

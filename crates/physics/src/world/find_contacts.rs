@@ -3,6 +3,7 @@
 //! within the step, so that nothing tunnels into anything.
 
 use crate::balls::PARALLEL_BALLS;
+use crate::ccd::contact_normal;
 use crate::contact::{BodyRef, Contact, Pair, PairSlots, WallContact};
 use crate::room::Surface;
 use glam::DVec3;
@@ -50,9 +51,10 @@ impl World {
                 let closing = 2.0 * (speed[i] + speed[j]) * dt;
                 if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
                     // Gravity moves both alike, so within the step they close
-                    // along a straight line: take the normal at the moment of impact.
+                    // along a straight line: take the normal where they meet.
                     let reach = balls.radius[i] + balls.radius[j];
-                    let (n, gap) = impact_normal(d, relative, reach, dt).unwrap_or((d / dist, gap));
+                    let (n, gap) =
+                        contact_normal(d, relative, reach, dt).unwrap_or((d / dist, gap));
                     // Approach speed before anything moves: what restitution acts on.
                     band.push(Pair::new(i, j, n, gap, relative.dot(n)));
                     slots.push([i as u32, j as u32]);
@@ -88,6 +90,7 @@ impl World {
             }
         });
         let partners = &self.ball_partners;
+        let bounce_threshold = cfg.solver.bounce_threshold;
         let touch_walls = |i: usize, into: &mut Vec<WallContact>| {
             let crowded = partners[i] > 0;
             // Most balls of a crowd lie beyond any wall's reach below, and
@@ -111,11 +114,14 @@ impl World {
                 } else {
                     0.0
                 };
-                if gap <= reach + TOUCH_SLOP {
+                // Its approach speed before anything moves: what
+                // restitution acts on.
+                let approach = balls.velocity[i].dot(n);
+                // A lone ball meets a wall fast enough to bounce exactly in
+                // flight; the contact would stop it first.
+                let bounces_in_flight = !crowded && approach < -bounce_threshold;
+                if gap <= reach + TOUCH_SLOP && !bounces_in_flight {
                     let gap = if gap > TOUCH_SLOP { gap } else { gap.min(0.0) };
-                    // Its approach speed before anything moves: what
-                    // restitution acts on.
-                    let approach = balls.velocity[i].dot(n);
                     into.push(WallContact::new(i, s, gap, approach));
                 }
             }
@@ -247,25 +253,4 @@ impl World {
             c.approach = bodies.normal_velocity(c);
         }
     }
-}
-
-/// For two spheres whose centres differ by `d + v t`, the line of centres at
-/// first touch within `horizon`, and the gap left along it at t = 0.
-fn impact_normal(d: DVec3, v: DVec3, reach: f64, horizon: f64) -> Option<(DVec3, f64)> {
-    let a = v.length_squared();
-    let b = d.dot(v);
-    let c = d.length_squared() - reach * reach;
-    if c <= 0.0 || b >= 0.0 || a == 0.0 {
-        return None;
-    }
-    let disc = b * b - a * c;
-    if disc < 0.0 {
-        return None;
-    }
-    let t = c / (-b + disc.sqrt());
-    if t > horizon {
-        return None;
-    }
-    let n = (d + v * t).normalize();
-    Some((n, -v.dot(n) * t))
 }

@@ -3,7 +3,7 @@
 //! sliding equations.
 
 use crate::balls::Tint;
-use crate::ccd::first_impact;
+use crate::ccd::{bounce_off_wall, first_impact};
 use crate::events::{Event, EventKind};
 use crate::room::Surface;
 use crate::tumbler::GroundedParams;
@@ -48,9 +48,11 @@ impl World {
             let r = self.balls.radius[i];
             if self.ball_partners[i] > 0 {
                 // Its walls are in the solver already (see `collect_contacts`):
-                // the step-average velocity carries it along its parabola.
+                // the step-average velocity carries it along its parabola,
+                // from where its impacts moved the path's start.
                 let v = self.balls.velocity[i];
-                self.balls.position[i] = room.clamp_sphere(self.balls.position[i] + v * dt, r);
+                let start = self.balls.position[i] + self.impacts.shift(i);
+                self.balls.position[i] = room.clamp_sphere(start + v * dt, r);
                 self.balls.velocity[i] = v + 0.5 * dt * gravity;
                 continue;
             }
@@ -86,27 +88,13 @@ impl World {
                 x += n * (r - room.distance(s, x));
                 let speed = -n.dot(u);
                 self.hit_wall[i] = true;
-                let normal_impulse = if speed > solver.bounce_threshold {
-                    u += (1.0 + e) * speed * n;
-                    m * (1.0 + e) * speed
-                } else {
-                    u += speed * n;
-                    if n.dot(g) < 0.0 {
-                        // Resting on it: the wall carries gravity from here on.
-                        g -= n.dot(g) * n;
-                    }
-                    m * speed
-                };
-                // Coulomb friction at the contact point, at most enough to roll.
-                let arm = -r * n;
-                let slip = u + spin.cross(arm);
-                let slip = slip - slip.dot(n) * n;
-                let slip_speed = slip.length();
-                if slip_speed > 0.0 {
-                    let j = (mu * normal_impulse).min(slip_speed / (1.0 / m + r * r / inertia));
-                    let impulse = -slip / slip_speed * j;
-                    u += impulse / m;
-                    spin += arm.cross(impulse) / inertia;
+                // Slower than the threshold, it comes to rest on the wall.
+                let bounces = speed > solver.bounce_threshold;
+                let restitution = if bounces { e } else { 0.0 };
+                (u, spin, _) = bounce_off_wall((u, spin), n, (r, m, inertia), restitution, mu);
+                if !bounces && n.dot(g) < 0.0 {
+                    // Resting on it: the wall carries gravity from here on.
+                    g -= n.dot(g) * n;
                 }
                 if speed > solver.event_threshold {
                     self.balls.tint[i] = Tint::Surface(s);

@@ -41,6 +41,7 @@ mod find_contacts;
 mod fireball_flight;
 mod flight;
 mod hand;
+mod impacts;
 mod overlaps;
 mod report;
 mod spawn;
@@ -179,6 +180,7 @@ pub struct World {
     /// Per grid layer: the contacts of its balls with the walls.
     wall_contacts_by_layer: Vec<Vec<WallContact>>,
     crowd: Crowd,
+    impacts: impacts::Impacts,
     /// Last step's impulses of both solver stages, by ball number (see
     /// [`crate::warm`]), and this step's, which take their place once the
     /// step is done.
@@ -251,6 +253,7 @@ impl World {
             pair_spheres: Vec::new(),
             speed: Vec::new(),
             crowd: Crowd::default(),
+            impacts: Default::default(),
             warm: Default::default(),
             warm_next: Default::default(),
             before_step: Default::default(),
@@ -522,6 +525,7 @@ impl World {
                 *v += 0.5 * dt * g;
             }
         });
+        self.resolve_impacts(dt, g);
         self.update_contact_inertia();
         let (iterations, threshold) = (
             self.config.solver.iterations,

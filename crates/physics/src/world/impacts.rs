@@ -1,0 +1,443 @@
+//! Step 3, restitution in time order: the impacts of the coming step,
+//! resolved one by one in the order they happen, each between its two
+//! bodies alone (after Mirtich's impulse-based simulation, and the
+//! collision pass of Guendelman, Bridson and Fedkiw).
+//!
+//! A contact solver resolves the contacts it is given together, as one
+//! coupled system: right for a pile at rest, wrong for impacts, which it
+//! stops where each should bounce (a room of elastic balls runs down, and
+//! Newton's cradle moves as one). Here every impact is the two-body
+//! collision of the 1-D formulas (P2) along the line of centres at the
+//! moment of touching, or a ball's bounce off a wall, and an impact that
+//! sets a touching neighbour moving is met in its turn, at the same
+//! instant: the cradle's impulse runs down the row, and at restitution 1
+//! every impact keeps both momentum and energy.
+//!
+//! Within the step a ball moves along `x + v t + g (t^2 - t dt) / 2`, with
+//! `v` its step-average velocity; an impact at time `t` that changes `v` by
+//! `dv` keeps the path up to `t` by moving the start back by `dv t` (the
+//! ball's `shift`), so the step's move ends where the ball really is.
+//! The contact solver then sees the impacts done: the pairs and walls of
+//! the balls that met something carry their new gaps and approach speeds.
+//!
+//! Only balls in the solver's hands take part (those near another ball);
+//! a ball alone meets its walls exactly in flight (see `flight`), and a
+//! tumbler's impacts bounce in the predict stage.
+
+use crate::balls::Tint;
+use crate::ccd::{bounce_off_wall, contact_normal, first_impact, first_touch};
+use crate::contact::Pair;
+use crate::events::{Event, EventKind};
+use crate::room::Surface;
+use glam::DVec3;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use super::World;
+
+/// Below this approach speed (m/s) two surfaces rest on each other, whatever
+/// the bounce threshold: the contact solver holds them.
+const RESTING_SPEED: f64 = 1e-6;
+
+/// The most impacts one ball takes part in within a step. A ball caught in
+/// a tight cluster could otherwise be struck back and forth without end;
+/// past this, its contacts are left to the contact solver, which stops them.
+const IMPACTS_PER_BALL: u32 = 16;
+
+/// What a ball strikes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Struck {
+    Ball(u32),
+    Wall(Surface),
+}
+
+/// An impact due at `time`, found when its balls had met `versions`
+/// impacts: stale once either has met another since.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    time: f64,
+    ball: u32,
+    struck: Struck,
+    versions: [u32; 2],
+}
+
+impl Candidate {
+    /// Equal times are taken in a fixed order, so that a rerun is
+    /// bit-identical.
+    fn key(&self) -> (u32, u64) {
+        let struck = match self.struck {
+            Struck::Ball(j) => j as u64,
+            Struck::Wall(s) => (1 << 40) + s.index() as u64,
+        };
+        (self.ball, struck)
+    }
+}
+
+impl PartialEq for Candidate {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Candidate {}
+
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Candidate {
+    /// The earliest first out of a [`BinaryHeap`] (a max-heap).
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .time
+            .total_cmp(&self.time)
+            .then_with(|| other.key().cmp(&self.key()))
+    }
+}
+
+/// The impacts stage's working storage, kept between steps.
+#[derive(Debug, Default)]
+pub(super) struct Impacts {
+    queue: BinaryHeap<Candidate>,
+    /// Per slot: how far back the start of its path has moved (see above).
+    shift: Vec<DVec3>,
+    /// Per slot: how many impacts it has met this step, and when the last.
+    met: Vec<u32>,
+    last: Vec<f64>,
+    /// The slots that met an impact this step.
+    touched: Vec<u32>,
+    /// The pairs that may collide within the step, from the contacts.
+    due: Vec<Pair>,
+    /// The balls near one whose path changed.
+    near: Vec<u32>,
+}
+
+impl Impacts {
+    /// Per slot: how far the start of its path moved this step.
+    pub(super) fn shift(&self, slot: usize) -> DVec3 {
+        self.shift.get(slot).copied().unwrap_or(DVec3::ZERO)
+    }
+
+    /// Whether slot `i` met an impact this step.
+    fn met(&self, i: usize) -> bool {
+        self.met[i] > 0
+    }
+
+    /// Forgets the step's impacts, ready for `slots` balls.
+    pub(super) fn clear(&mut self, slots: usize) {
+        for &i in &self.touched {
+            self.shift[i as usize] = DVec3::ZERO;
+            self.met[i as usize] = 0;
+            self.last[i as usize] = 0.0;
+        }
+        self.touched.clear();
+        self.queue.clear();
+        self.shift.resize(slots, DVec3::ZERO);
+        self.met.resize(slots, 0);
+        self.last.resize(slots, 0.0);
+    }
+}
+
+/// What the impacts stage reads of the world, apart from the balls.
+struct Setting {
+    dt: f64,
+    gravity: DVec3,
+    threshold: f64,
+    ball_restitution: f64,
+    wall_restitution: f64,
+    wall_friction: f64,
+    /// The largest ball radius, and how far another ball may move in a step.
+    search: f64,
+}
+
+impl World {
+    /// Resolves the step's impacts in the order they happen (see the module
+    /// above), on the step-average velocities. Collects nothing when
+    /// nothing collides.
+    pub(super) fn resolve_impacts(&mut self, dt: f64, gravity: DVec3) {
+        let mut impacts = std::mem::take(&mut self.impacts);
+        impacts.clear(self.balls.len());
+        let threshold = self.config.solver.bounce_threshold.max(RESTING_SPEED);
+        let due = |p: &Pair| p.approach < -threshold && p.gap + p.approach * dt <= 0.0;
+        self.contacts.copy_pairs_where(due, &mut impacts.due);
+        let mut setting = Setting {
+            dt,
+            gravity,
+            threshold,
+            ball_restitution: self.config.balls.restitution,
+            wall_restitution: self.config.room.restitution,
+            wall_friction: self.config.room.friction,
+            search: 0.0,
+        };
+        for k in 0..impacts.due.len() {
+            let Pair { i, j, .. } = impacts.due[k];
+            self.queue_pair(&mut impacts, &setting, i as usize, j as usize, 0.0);
+        }
+        for c in &self.contacts.walls {
+            if self.ball_partners[c.ball as usize] > 0 {
+                self.queue_wall(&mut impacts, &setting, c.ball as usize, c.surface, 0.0);
+            }
+        }
+        if impacts.queue.is_empty() {
+            self.impacts = impacts;
+            return;
+        }
+        // Another ball within reach of a moving one is found in the grid
+        // by its start, and may move towards it by up to a radius.
+        let largest = self.balls.radius.iter().fold(0.0_f64, |a, &r| a.max(r));
+        setting.search = 2.0 * largest + self.config.balls.radius;
+        while let Some(c) = impacts.queue.pop() {
+            let i = c.ball as usize;
+            let fresh = match c.struck {
+                Struck::Ball(j) => {
+                    impacts.met[i] == c.versions[0] && impacts.met[j as usize] == c.versions[1]
+                }
+                Struck::Wall(_) => impacts.met[i] == c.versions[0],
+            };
+            if !fresh {
+                continue;
+            }
+            let (happened, j) = match c.struck {
+                Struck::Ball(j) => {
+                    let j = j as usize;
+                    (
+                        self.collide_balls(&mut impacts, &setting, i, j, c.time),
+                        Some(j),
+                    )
+                }
+                Struck::Wall(s) => (self.bounce_ball(&mut impacts, &setting, i, s, c.time), None),
+            };
+            if !happened {
+                continue;
+            }
+            for k in [Some(i), j].into_iter().flatten() {
+                if impacts.met[k] < IMPACTS_PER_BALL {
+                    self.queue_all_of(&mut impacts, &setting, k, c.time);
+                }
+            }
+        }
+        if !impacts.touched.is_empty() {
+            self.hand_impacts_to_contacts(&impacts, &setting);
+        }
+        self.impacts = impacts;
+    }
+
+    /// Where slot `i` is at time `t` of the step, but for the fall that
+    /// gravity gives every ball alike.
+    fn path_at(&self, impacts: &Impacts, i: usize, t: f64) -> DVec3 {
+        self.balls.position[i] + impacts.shift[i] + self.balls.velocity[i] * t
+    }
+
+    /// Queues the impact of slots `i` and `j` if they touch, closing fast
+    /// enough to bounce, between time `from` and the step's end.
+    fn queue_pair(&self, impacts: &mut Impacts, setting: &Setting, i: usize, j: usize, from: f64) {
+        let (a, b) = (i.min(j), i.max(j));
+        let d = self.path_at(impacts, a, from) - self.path_at(impacts, b, from);
+        let v = self.balls.velocity[a] - self.balls.velocity[b];
+        let reach = self.balls.radius[a] + self.balls.radius[b];
+        let Some(t) = first_touch(d, v, reach, setting.dt - from) else {
+            return;
+        };
+        let n = (d + v * t).normalize_or_zero();
+        if v.dot(n) < -setting.threshold {
+            impacts.queue.push(Candidate {
+                time: from + t,
+                ball: a as u32,
+                struck: Struck::Ball(b as u32),
+                versions: [impacts.met[a], impacts.met[b]],
+            });
+        }
+    }
+
+    /// Queues the impact of slot `i` on wall `s` if it reaches it between
+    /// time `from` and the step's end.
+    fn queue_wall(
+        &self,
+        impacts: &mut Impacts,
+        setting: &Setting,
+        i: usize,
+        s: Surface,
+        from: f64,
+    ) {
+        let n = s.inward_normal();
+        let (dt, g) = (setting.dt, setting.gravity);
+        let at = self.path_at(impacts, i, from) + 0.5 * g * (from * from - from * dt);
+        let distance = self.room.distance(s, at) - self.balls.radius[i];
+        let normal_velocity = n.dot(self.balls.velocity[i] + g * (from - 0.5 * dt));
+        if let Some(t) = first_impact(distance, normal_velocity, n.dot(g), dt - from) {
+            impacts.queue.push(Candidate {
+                time: from + t,
+                ball: i as u32,
+                struck: Struck::Wall(s),
+                versions: [impacts.met[i], 0],
+            });
+        }
+    }
+
+    /// Queues every impact slot `i` may meet from time `from` on, now that
+    /// its path has changed: with the walls, and with the balls in the
+    /// solver's hands within its reach.
+    fn queue_all_of(&self, impacts: &mut Impacts, setting: &Setting, i: usize, from: f64) {
+        for s in Surface::ALL {
+            self.queue_wall(impacts, setting, i, s, from);
+        }
+        let start = self.path_at(impacts, i, from);
+        let end = self.path_at(impacts, i, setting.dt);
+        let margin = DVec3::splat(setting.search);
+        let mut near = std::mem::take(&mut impacts.near);
+        near.clear();
+        let partners = &self.ball_partners;
+        let lo = start.min(end) - margin;
+        self.grid.for_each_in_box(lo, start.max(end) + margin, |j| {
+            if j != i && partners[j] > 0 {
+                near.push(j as u32);
+            }
+        });
+        for &j in &near {
+            self.queue_pair(impacts, setting, i, j as usize, from);
+        }
+        impacts.near = near;
+    }
+
+    /// The two-body collision of slots `i` and `j` at time `t`, if they
+    /// still close fast enough to bounce; returns whether they collided.
+    fn collide_balls(
+        &mut self,
+        impacts: &mut Impacts,
+        setting: &Setting,
+        i: usize,
+        j: usize,
+        t: f64,
+    ) -> bool {
+        let d = self.path_at(impacts, i, t) - self.path_at(impacts, j, t);
+        let Some(n) = d.try_normalize() else {
+            return false;
+        };
+        let balls = &mut self.balls;
+        let closing = -(balls.velocity[i] - balls.velocity[j]).dot(n);
+        let (wi, wj) = (balls.inv_mass[i], balls.inv_mass[j]);
+        if closing <= setting.threshold || wi + wj <= 0.0 {
+            return false;
+        }
+        // v1' = ((m1 - m2) v1 + 2 m2 v2) / (m1 + m2) along n, scaled by e (P2).
+        let impulse = (1.0 + setting.ball_restitution) * closing / (wi + wj);
+        let (dvi, dvj) = (n * (impulse * wi), n * (-impulse * wj));
+        balls.velocity[i] += dvi;
+        balls.velocity[j] += dvj;
+        impacts.shift[i] -= dvi * t;
+        impacts.shift[j] -= dvj * t;
+        let fall = 0.5 * setting.gravity * (t * t - t * setting.dt);
+        let centre_j =
+            self.balls.position[j] + impacts.shift[j] + self.balls.velocity[j] * t + fall;
+        if closing > self.config.solver.event_threshold {
+            self.events.push(Event {
+                kind: EventKind::BallBall { a: i, b: j },
+                point: centre_j + n * self.balls.radius[j],
+                normal: n,
+                speed: closing,
+            });
+        }
+        note_impact(impacts, i, t);
+        note_impact(impacts, j, t);
+        true
+    }
+
+    /// Slot `i`'s bounce off wall `s` at time `t`, if it still approaches
+    /// it fast enough; returns whether it bounced.
+    fn bounce_ball(
+        &mut self,
+        impacts: &mut Impacts,
+        setting: &Setting,
+        i: usize,
+        s: Surface,
+        t: f64,
+    ) -> bool {
+        let n = s.inward_normal();
+        let (dt, g) = (setting.dt, setting.gravity);
+        let balls = &mut self.balls;
+        // The instantaneous velocity at the moment of impact.
+        let u = balls.velocity[i] + g * (t - 0.5 * dt);
+        let speed = -n.dot(u);
+        if speed <= setting.threshold {
+            return false;
+        }
+        let body = (balls.radius[i], balls.mass[i], balls.inertia(i));
+        let (after, spin, _) = bounce_off_wall(
+            (u, balls.spin[i]),
+            n,
+            body,
+            setting.wall_restitution,
+            setting.wall_friction,
+        );
+        let dv = after - u;
+        balls.velocity[i] += dv;
+        balls.spin[i] = spin;
+        impacts.shift[i] -= dv * t;
+        if speed > self.config.solver.event_threshold {
+            let centre = self.path_at(impacts, i, t) + 0.5 * g * (t * t - t * dt);
+            self.balls.tint[i] = Tint::Surface(s);
+            self.events.push(Event {
+                kind: EventKind::BallSurface {
+                    ball: i,
+                    surface: s,
+                },
+                point: self.room.foot(s, centre),
+                normal: n,
+                speed,
+            });
+        }
+        note_impact(impacts, i, t);
+        true
+    }
+
+    /// Hands the impacts' outcome to the contact solver: the pairs and
+    /// walls of the balls that met one start from where their paths now
+    /// begin, at their new approach speeds (so that none is taken for an
+    /// impact again).
+    fn hand_impacts_to_contacts(&mut self, impacts: &Impacts, setting: &Setting) {
+        let balls = &self.balls;
+        let dt = setting.dt;
+        self.contacts.update_pairs(|p| {
+            let (i, j) = (p.i as usize, p.j as usize);
+            if !impacts.met(i) && !impacts.met(j) {
+                return;
+            }
+            // Both move in straight lines from the later of their last
+            // impacts: the contact's normal is found from there on, and its
+            // gap is along it from where their paths now start.
+            let from = impacts.last[i].max(impacts.last[j]);
+            let v = balls.velocity[i] - balls.velocity[j];
+            let start =
+                (balls.position[i] + impacts.shift[i]) - (balls.position[j] + impacts.shift[j]);
+            let d = start + v * from;
+            let reach = balls.radius[i] + balls.radius[j];
+            if let Some(n) = d.try_normalize() {
+                p.normal = contact_normal(d, v, reach, dt - from).map_or(n, |(n, _)| n);
+                p.gap = start.dot(p.normal) - reach;
+            }
+            p.approach = v.dot(p.normal);
+        });
+        // A wall's approach is the ball's normal velocity before gravity's
+        // half step (see `collect_contacts`).
+        let half_kick = 0.5 * setting.dt * setting.gravity;
+        for c in self.contacts.walls.iter_mut() {
+            let i = c.ball as usize;
+            if impacts.met(i) {
+                let n = c.normal();
+                c.gap += impacts.shift[i].dot(n);
+                c.approach = (balls.velocity[i] - half_kick).dot(n);
+            }
+        }
+    }
+}
+
+/// Counts an impact of slot `i` at time `t`.
+fn note_impact(impacts: &mut Impacts, i: usize, t: f64) {
+    if impacts.met[i] == 0 {
+        impacts.touched.push(i as u32);
+    }
+    impacts.met[i] += 1;
+    impacts.last[i] = t;
+}
