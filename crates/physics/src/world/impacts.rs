@@ -26,7 +26,7 @@
 
 use crate::balls::Tint;
 use crate::ccd::{bounce_off_wall, contact_normal, first_impact, first_touch};
-use crate::contact::Pair;
+use crate::contact::{Pair, PairSlots};
 use crate::events::{Event, EventKind};
 use crate::room::Surface;
 use glam::DVec3;
@@ -110,11 +110,41 @@ pub(super) struct Impacts {
     touched: Vec<u32>,
     /// The pairs that may collide within the step, from the contacts.
     due: Vec<Pair>,
-    /// The balls near one whose path changed.
-    near: Vec<u32>,
+    /// Per slot, the balls it has a contact with this step (the pairs'
+    /// other slots): `neighbours[first[i]..first[i + 1]]`.
+    first: Vec<u32>,
+    neighbours: Vec<u32>,
+    /// Where the next neighbour of each slot goes while they are listed.
+    cursor: Vec<u32>,
 }
 
 impl Impacts {
+    /// Lists each slot's neighbours from the contacts' pairs, by counting
+    /// sort: in slot order, whatever the threads found them in.
+    fn list_neighbours(&mut self, pair_slots: &[Vec<PairSlots>], slots: usize) {
+        let first = &mut self.first;
+        first.clear();
+        first.resize(slots + 1, 0);
+        for &[i, j] in pair_slots.iter().flatten() {
+            first[i as usize + 1] += 1;
+            first[j as usize + 1] += 1;
+        }
+        for k in 0..slots {
+            first[k + 1] += first[k];
+        }
+        self.cursor.clear();
+        self.cursor.extend_from_slice(&first[..slots]);
+        self.neighbours.clear();
+        self.neighbours.resize(first[slots] as usize, 0);
+        for &[i, j] in pair_slots.iter().flatten() {
+            for (a, b) in [(i, j), (j, i)] {
+                let at = &mut self.cursor[a as usize];
+                self.neighbours[*at as usize] = b;
+                *at += 1;
+            }
+        }
+    }
+
     /// Per slot: how far the start of its path moved this step.
     pub(super) fn shift(&self, slot: usize) -> DVec3 {
         self.shift.get(slot).copied().unwrap_or(DVec3::ZERO)
@@ -148,8 +178,6 @@ struct Setting {
     ball_restitution: f64,
     wall_restitution: f64,
     wall_friction: f64,
-    /// The largest ball radius, and how far another ball may move in a step.
-    search: f64,
 }
 
 impl World {
@@ -162,14 +190,13 @@ impl World {
         let threshold = self.config.solver.bounce_threshold.max(RESTING_SPEED);
         let due = |p: &Pair| p.approach < -threshold && p.gap + p.approach * dt <= 0.0;
         self.contacts.copy_pairs_where(due, &mut impacts.due);
-        let mut setting = Setting {
+        let setting = Setting {
             dt,
             gravity,
             threshold,
             ball_restitution: self.config.balls.restitution,
             wall_restitution: self.config.room.restitution,
             wall_friction: self.config.room.friction,
-            search: 0.0,
         };
         for k in 0..impacts.due.len() {
             let Pair { i, j, .. } = impacts.due[k];
@@ -184,10 +211,7 @@ impl World {
             self.impacts = impacts;
             return;
         }
-        // Another ball within reach of a moving one is found in the grid
-        // by its start, and may move towards it by up to a radius.
-        let largest = self.balls.radius.iter().fold(0.0_f64, |a, &r| a.max(r));
-        setting.search = 2.0 * largest + self.config.balls.radius;
+        impacts.list_neighbours(&self.contacts.pair_slots, self.balls.len());
         while let Some(c) = impacts.queue.pop() {
             let i = c.ball as usize;
             let fresh = match c.struck {
@@ -277,28 +301,31 @@ impl World {
     }
 
     /// Queues every impact slot `i` may meet from time `from` on, now that
-    /// its path has changed: with the walls, and with the balls in the
-    /// solver's hands within its reach.
+    /// its path has changed: with the walls within its reach, and with the
+    /// balls it has a contact with. (Others lie beyond its reach for this
+    /// step: the next step finds them.)
     fn queue_all_of(&self, impacts: &mut Impacts, setting: &Setting, i: usize, from: f64) {
-        for s in Surface::ALL {
-            self.queue_wall(impacts, setting, i, s, from);
-        }
-        let start = self.path_at(impacts, i, from);
-        let end = self.path_at(impacts, i, setting.dt);
-        let margin = DVec3::splat(setting.search);
-        let mut near = std::mem::take(&mut impacts.near);
-        near.clear();
-        let partners = &self.ball_partners;
-        let lo = start.min(end) - margin;
-        self.grid.for_each_in_box(lo, start.max(end) + margin, |j| {
-            if j != i && partners[j] > 0 {
-                near.push(j as u32);
+        let (start, end) = (
+            self.path_at(impacts, i, from),
+            self.path_at(impacts, i, setting.dt),
+        );
+        let fall = 0.5 * self.config.gravity * setting.dt * setting.dt;
+        let reach = self.balls.radius[i] + fall;
+        if self
+            .room
+            .nearest_distance(start)
+            .min(self.room.nearest_distance(end))
+            <= reach
+        {
+            for s in Surface::ALL {
+                self.queue_wall(impacts, setting, i, s, from);
             }
-        });
-        for &j in &near {
-            self.queue_pair(impacts, setting, i, j as usize, from);
         }
-        impacts.near = near;
+        let (first, last) = (impacts.first[i] as usize, impacts.first[i + 1] as usize);
+        for k in first..last {
+            let j = impacts.neighbours[k] as usize;
+            self.queue_pair(impacts, setting, i, j, from);
+        }
     }
 
     /// The two-body collision of slots `i` and `j` at time `t`, if they
