@@ -18,6 +18,8 @@ pub enum Tint {
     White,
     Surface(Surface),
     Tumbler(usize),
+    /// The colour its scene gave placed ball `k`.
+    Placed(usize),
 }
 
 /// Uniform solid spheres. Velocities are instantaneous velocities at the

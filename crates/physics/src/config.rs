@@ -27,9 +27,37 @@ pub struct RoomConfig {
     pub rolling_resistance: f64,
 }
 
+/// A ball placed by hand (E3): where it starts and how it moves. What it
+/// leaves out is the scene's: the balls' radius, mass and colour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BallPlacement {
+    pub position: DVec3,
+    pub velocity: DVec3,
+    /// Angular velocity in rad/s (a ball sent rolling spins at v / r).
+    pub spin: DVec3,
+    pub color: Option<Rgb>,
+    pub radius: Option<f64>,
+    pub mass: Option<f64>,
+}
+
+impl BallPlacement {
+    /// A ball of the scene's kind at `position`, moving at `velocity`.
+    pub fn new(position: DVec3, velocity: DVec3) -> BallPlacement {
+        BallPlacement {
+            position,
+            velocity,
+            spin: DVec3::ZERO,
+            color: None,
+            radius: None,
+            mass: None,
+        }
+    }
+}
+
 /// The balls and how they are started.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BallsConfig {
+    /// How many balls start at random (from the seed), besides the placed ones.
     pub count: usize,
     pub radius: f64,
     pub mass: f64,
@@ -43,6 +71,28 @@ pub struct BallsConfig {
     pub start_fill: f64,
     /// Colour of a ball that has not hit anything yet.
     pub color: Rgb,
+    /// Balls placed by hand, in addition to the `count` random ones (which
+    /// start in the space they leave free): a scene of placed balls alone
+    /// sets `count` to 0, and a scene may also rain random balls on a
+    /// placed arrangement. They are the world's first balls, in this order.
+    pub placements: Vec<BallPlacement>,
+}
+
+impl BallsConfig {
+    /// All the balls: the placed ones and the random ones.
+    pub fn total(&self) -> usize {
+        self.placements.len() + self.count
+    }
+
+    /// The radius of placed ball `k`.
+    pub fn placed_radius(&self, k: usize) -> f64 {
+        self.placements[k].radius.unwrap_or(self.radius)
+    }
+
+    /// The largest radius of any ball.
+    pub fn largest_radius(&self) -> f64 {
+        (0..self.placements.len()).fold(self.radius, |r, k| r.max(self.placed_radius(k)))
+    }
 }
 
 /// One sphere of a tumbler's compound shape, in the tumbler's body frame.
@@ -178,6 +228,7 @@ impl Default for WorldConfig {
                 speed_max: 6.0,
                 start_fill: 1.0,
                 color: [0.95, 0.95, 0.95],
+                placements: Vec::new(),
             },
             tumblers: TumblersConfig {
                 spheres: vec![

@@ -36,4 +36,4 @@ pub use fireball::Fireball;
 pub use rng::Rng;
 pub use room::{Room, Surface};
 pub use tumbler::{Grip, Tumbler, TumblerShape, axis_extent};
-pub use world::{BuildError, Energy, Pick, World};
+pub use world::{BuildError, Energy, Pick, World, placement_problem};

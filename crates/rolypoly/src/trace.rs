@@ -191,6 +191,7 @@ pub fn tint_name(tint: Tint) -> Cow<'static, str> {
         Tint::White => Cow::Borrowed("white"),
         Tint::Surface(surface) => Cow::Borrowed(surface.name()),
         Tint::Tumbler(i) => Cow::Owned(format!("tumbler{i}")),
+        Tint::Placed(k) => Cow::Owned(format!("placed{k}")),
     }
 }
 
@@ -472,5 +473,6 @@ mod tests {
         assert_eq!(tint_name(Tint::White), "white");
         assert_eq!(tint_name(Tint::Surface(Surface::Ceiling)), "ceiling");
         assert_eq!(tint_name(Tint::Tumbler(3)), "tumbler3");
+        assert_eq!(tint_name(Tint::Placed(2)), "placed2");
     }
 }

@@ -42,7 +42,7 @@ const RESTING_SPEED: f64 = 1e-6;
 /// The most impacts one ball takes part in within a step. A ball caught in
 /// a tight cluster could otherwise be struck back and forth without end;
 /// past this, its contacts are left to the contact solver, which stops them.
-const IMPACTS_PER_BALL: u32 = 4;
+const IMPACTS_PER_BALL: u32 = 8;
 
 /// A ball with more contacts than this lies packed in a crowd (a plane
 /// of touching balls gives each six). An impact between two such balls is

@@ -47,6 +47,7 @@ mod report;
 mod spawn;
 
 pub use hand::Pick;
+pub use spawn::placement_problem;
 
 /// A ball this close to a wall is touching it (metres).
 const TOUCH_SLOP: f64 = 1e-6;
@@ -223,6 +224,13 @@ impl World {
             }
         }
         let b = &config.balls;
+        for k in 0..b.placements.len() {
+            if let Some(problem) = spawn::placement_problem(&config, &room, &shape, k) {
+                return Err(BuildError(format!(
+                    "ball {k} (balls.placement[{k}]) {problem}"
+                )));
+            }
+        }
         // Two balls can touch within a step only if their centres are closer
         // than two radii plus the speculative reach of one radius (see
         // `collect_contacts`): a cell that wide finds every pair. Balls
@@ -230,11 +238,11 @@ impl World {
         // between them, so that walking the empty cells costs no more than
         // the balls. The fireball and tumblers look for balls by box,
         // whatever the cell size.
-        let touch = 3.0 * b.radius + 4.0 * TOUCH_SLOP;
-        let spacing = (room.size().element_product() / b.count.max(1) as f64).cbrt();
+        let touch = 3.0 * b.largest_radius() + 4.0 * TOUCH_SLOP;
+        let spacing = (room.size().element_product() / b.total().max(1) as f64).cbrt();
         let grid = Grid::new(room.min, room.max, touch.max(spacing));
         let mut world = World {
-            balls: Balls::with_uniform(b.count, b.radius, b.mass),
+            balls: Balls::with_uniform(b.total(), b.radius, b.mass),
             sorted: Balls::default(),
             contact_inv: vec![DMat3::IDENTITY; tumblers.len()],
             tumblers,
@@ -245,7 +253,7 @@ impl World {
             events: Vec::new(),
             grid,
             contacts: Contacts::default(),
-            hit_wall: vec![false; b.count],
+            hit_wall: vec![false; b.total()],
             ball_partners: Vec::new(),
             picked_pairs: Vec::new(),
             unpushed: Vec::new(),
@@ -310,6 +318,12 @@ impl World {
     pub fn tint_color(&self, tint: Tint) -> Rgb {
         match tint {
             Tint::White => self.config.balls.color,
+            Tint::Placed(k) => {
+                let placed = self.config.balls.placements.get(k);
+                placed
+                    .and_then(|p| p.color)
+                    .unwrap_or(self.config.balls.color)
+            }
             Tint::Surface(s) => self.config.room.colors[s.index()],
             Tint::Tumbler(t) => {
                 let colors = &self.config.tumblers.colors;
@@ -334,8 +348,10 @@ impl World {
         std::mem::swap(&mut self.events, into);
     }
 
-    /// Re-initialises the balls (I6): new random positions and velocities
-    /// from the world's random sequence, every ball alive and white again.
+    /// Re-initialises the balls (I6): the placed balls back where their
+    /// scene put them, the others at new random positions and velocities
+    /// from the world's random sequence, every ball alive and of its
+    /// starting colour again.
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
         // New balls under old numbers: last step's impulses mean nothing now.
         for w in [&mut self.warm, &mut self.warm_next] {

@@ -1,19 +1,85 @@
-//! Where the balls start: random free spots, drawn from the world's
-//! random sequence.
+//! Where the balls start: the placed ones where their scene puts them,
+//! the others at random free spots drawn from the world's random sequence.
 
 use crate::balls::Tint;
+use crate::config::WorldConfig;
+use crate::room::Room;
+use crate::tumbler::{Tumbler, TumblerShape};
 use glam::DVec3;
 
 use super::{BuildError, World};
 
+/// Two surfaces this close (metres) touch rather than overlap: a row of
+/// balls written in a scene file at twice their radius apart touches.
+const PLACEMENT_TOLERANCE: f64 = 1e-9;
+
+/// What is wrong with where placed ball `k` starts, if anything: out of
+/// the room, or in an earlier placed ball or a tumbler. Touching is fine.
+pub fn placement_problem(
+    config: &WorldConfig,
+    room: &Room,
+    shape: &TumblerShape,
+    k: usize,
+) -> Option<String> {
+    let balls = &config.balls;
+    let p = balls.placements[k].position;
+    let r = balls.placed_radius(k);
+    if !p.is_finite() {
+        return Some(format!("has no finite position: {p}"));
+    }
+    if !room.contains_sphere(p, r, PLACEMENT_TOLERANCE) {
+        let (lo, hi) = (room.min + DVec3::splat(r), room.max - DVec3::splat(r));
+        return Some(format!(
+            "at {p} does not lie inside the room: with radius {r} its centre must lie              within {lo} ..= {hi}"
+        ));
+    }
+    for j in 0..k {
+        let (q, rj) = (balls.placements[j].position, balls.placed_radius(j));
+        let overlap = r + rj - p.distance(q);
+        if overlap > PLACEMENT_TOLERANCE {
+            return Some(format!(
+                "at {p} overlaps ball {j} (balls.placement[{j}]) at {q} by {overlap:.4} m"
+            ));
+        }
+    }
+    for (t, placement) in config.tumblers.placements.iter().enumerate() {
+        let tumbler = Tumbler::new(shape, placement, room.min.y);
+        for (s, sphere) in shape.spheres.iter().enumerate() {
+            let centre = tumbler.sphere_center(shape, s);
+            let overlap = r + sphere.radius - p.distance(centre);
+            if overlap > PLACEMENT_TOLERANCE {
+                return Some(format!(
+                    "at {p} overlaps tumbler {t} (tumblers.placement[{t}]) by {overlap:.4} m"
+                ));
+            }
+        }
+    }
+    None
+}
+
 impl World {
-    /// Places every ball at a random free spot with a random velocity.
+    /// Places every ball: the placed ones where the scene puts them, the
+    /// others at random free spots with random velocities.
     ///
-    /// Spots come from a jittered lattice whose spacing leaves each ball
-    /// room to move: shuffled lattice sites give random, non-overlapping
+    /// Random spots come from a jittered lattice whose spacing leaves each
+    /// ball room to move: shuffled lattice sites give random, non-overlapping
     /// positions in time linear in the ball count.
     pub(super) fn spawn_balls(&mut self) -> Result<(), BuildError> {
-        let n = self.balls.len();
+        let placed = self.config.balls.placements.len();
+        for (k, p) in self.config.balls.placements.iter().enumerate() {
+            self.balls.set(k, p.position, p.velocity);
+            self.balls.spin[k] = p.spin;
+            self.balls.radius[k] = self.config.balls.placed_radius(k);
+            self.balls
+                .set_mass(k, p.mass.unwrap_or(self.config.balls.mass));
+            self.balls.alive[k] = true;
+            self.balls.tint[k] = if p.color.is_some() {
+                Tint::Placed(k)
+            } else {
+                Tint::White
+            };
+        }
+        let n = self.balls.len() - placed;
         if n == 0 {
             return Ok(());
         }
@@ -58,7 +124,13 @@ impl World {
                         let c = t.center
                             + t.orientation * DVec3::new(0.0, self.shape.bound_height, 0.0);
                         p.distance(c) > clearance
-                    });
+                    }) && self.config.balls.placements.iter().enumerate().all(
+                        |(k, q)| {
+                            let apart =
+                                r + self.config.balls.placed_radius(k) + jitter * 3f64.sqrt();
+                            p.distance(q.position) > apart + PLACEMENT_TOLERANCE
+                        },
+                    );
                     if clear && p.cmple(hi + DVec3::splat(1e-9)).all() {
                         sites.push(p);
                     }
@@ -73,6 +145,7 @@ impl World {
         }
         let (min_speed, max_speed) = (self.config.balls.speed_min, self.config.balls.speed_max);
         for i in 0..n {
+            let ball = placed + i;
             // Partial Fisher-Yates: site i is a uniform pick among the rest.
             let k = i + (self.rng.next_u64() % (sites.len() - i) as u64) as usize;
             sites.swap(i, k);
@@ -83,9 +156,9 @@ impl World {
             );
             let p = (sites[i] + offset).clamp(lo, hi);
             let v = self.rng.direction() * self.rng.range(min_speed, max_speed);
-            self.balls.set(i, p, v);
-            self.balls.alive[i] = true;
-            self.balls.tint[i] = Tint::White;
+            self.balls.set(ball, p, v);
+            self.balls.alive[ball] = true;
+            self.balls.tint[ball] = Tint::White;
         }
         Ok(())
     }

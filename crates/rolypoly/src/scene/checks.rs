@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::fmt;
 
 use glam::DVec3;
-use rolypoly_physics::Rgb;
+use rolypoly_physics::{Rgb, Room, TumblerShape, placement_problem};
 
 use super::{
     Location, MAX_BALLS, PARTICLE_CAPACITY, SURFACE_NAMES, Scene, SceneError, TUMBLER_SPHERES,
@@ -13,6 +13,8 @@ use super::{
 pub(super) const ITERATIONS: (usize, usize) = (1, 256);
 const MAX_MASS: f64 = 1e6;
 const MAX_SPEED: f64 = 100.0;
+/// Fastest spin (rad/s) a placed ball may start with.
+const MAX_SPIN: f64 = 1000.0;
 const MAX_FRICTION: f64 = 5.0;
 /// Longest effect time (seconds) and largest effect radius or size (metres).
 const MAX_EFFECT: f64 = 10.0;
@@ -309,6 +311,7 @@ impl Checker<'_> {
         self.color("balls.color", b.color)?;
 
         self.check_tumblers(fits, fits_why)?;
+        self.check_ball_placements(fits, fits_why)?;
 
         let f = &c.fireball;
         self.real_why("fireball.radius", f.radius, fits, fits_why)?;
@@ -416,6 +419,70 @@ impl Checker<'_> {
         self.real("effects.ball_hit.size", b.size, length)?;
         self.real("effects.ball_hit.burst_life", b.burst_life, time)?;
         self.real("effects.ball_hit.burst_size", b.burst_size, length)?;
+        Ok(())
+    }
+
+    /// Each placed ball's own values, then where it lies: in the room, clear
+    /// of the other balls and the tumblers (as the world checks it).
+    fn check_ball_placements(&self, fits: Bounds, fits_why: &str) -> Result<(), SceneError> {
+        let c = &self.scene.world;
+        let b = &c.balls;
+        if b.total() > MAX_BALLS {
+            return Err(self.out_of_range(
+                "balls.count",
+                format!("{} (and {} placed)", b.count, b.placements.len()),
+                format!("at most {MAX_BALLS} balls in all"),
+            ));
+        }
+        for (i, p) in b.placements.iter().enumerate() {
+            let key = format!("balls.placement[{i}]");
+            let at = |name: &str| format!("{key}.{name}");
+            for (name, v) in [
+                ("position", p.position),
+                ("velocity", p.velocity),
+                ("spin", p.spin),
+            ] {
+                if !v.is_finite() {
+                    return Err(self.out_of_range(
+                        &at(name),
+                        vec3_text(v),
+                        "finite numbers".into(),
+                    ));
+                }
+            }
+            let speed = p.velocity.length();
+            if speed > MAX_SPEED {
+                return Err(self.out_of_range(
+                    &at("velocity"),
+                    vec3_text(p.velocity),
+                    format!("a speed of at most {MAX_SPEED} m/s (this is {speed})"),
+                ));
+            }
+            if p.spin.length() > MAX_SPIN {
+                return Err(self.out_of_range(
+                    &at("spin"),
+                    vec3_text(p.spin),
+                    format!("at most {MAX_SPIN} rad/s"),
+                ));
+            }
+            if let Some(color) = p.color {
+                self.color(&at("color"), color)?;
+            }
+            if let Some(radius) = p.radius {
+                self.real_why(&at("radius"), radius, fits, fits_why)?;
+            }
+            if let Some(mass) = p.mass {
+                self.real(&at("mass"), mass, Bounds::positive(MAX_MASS))?;
+            }
+        }
+        let room = Room::new(c.room.size);
+        let shape = TumblerShape::new(&c.tumblers.spheres);
+        for i in 0..b.placements.len() {
+            if let Some(problem) = placement_problem(c, &room, &shape, i) {
+                let key = format!("balls.placement[{i}]");
+                return Err(self.invalid(&key, format!("ball {i} {problem}")));
+            }
+        }
         Ok(())
     }
 

@@ -65,6 +65,20 @@ pub(super) struct FileBalls {
     pub(super) speed_max: Option<Spanned<f64>>,
     pub(super) start_fill: Option<Spanned<f64>>,
     pub(super) color: Option<Spanned<Vec3>>,
+    pub(super) placement: Option<Vec<FileBallPlacement>>,
+}
+
+/// One `[[balls.placement]]`: a position is required; a ball left without
+/// a velocity starts at rest.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct FileBallPlacement {
+    pub(super) position: Spanned<Vec3>,
+    pub(super) velocity: Option<Spanned<Vec3>>,
+    pub(super) spin: Option<Spanned<Vec3>>,
+    pub(super) color: Option<Spanned<Vec3>>,
+    pub(super) radius: Option<Spanned<f64>>,
+    pub(super) mass: Option<Spanned<f64>>,
 }
 
 #[derive(Deserialize)]

@@ -295,7 +295,7 @@ fn table_header(line: &str) -> Option<String> {
 mod tests {
     use super::*;
     use glam::DVec3;
-    use rolypoly_physics::TumblerPlacement;
+    use rolypoly_physics::{BallPlacement, TumblerPlacement};
 
     const DEFAULT_SCENE: &str = include_str!("../../../../scenes/default.toml");
 
@@ -762,6 +762,61 @@ mod tests {
                     tilt_deg: 0.0,
                 },
             ]
+        );
+    }
+
+    #[test]
+    fn placed_balls_are_read_with_every_optional_key() {
+        let parsed = parse(
+            "[balls]\ncount = 0\n\n[[balls.placement]]\nposition = [0, 1, 0]\n\n\
+             [[balls.placement]]\nposition = [1, 2, 0.5]\nvelocity = [1, 0, 0]\n\
+             spin = [0, 0, -8]\ncolor = [1, 0, 0]\nradius = 0.2\nmass = 3\n",
+        )
+        .unwrap();
+        let b = &parsed.world.balls;
+        assert_eq!(b.count, 0);
+        let mut second = BallPlacement::new(DVec3::new(1.0, 2.0, 0.5), DVec3::X);
+        second.spin = DVec3::new(0.0, 0.0, -8.0);
+        second.color = Some([1.0, 0.0, 0.0]);
+        second.radius = Some(0.2);
+        second.mass = Some(3.0);
+        let first = BallPlacement::new(DVec3::Y, DVec3::ZERO);
+        assert_eq!(b.placements, vec![first, second]);
+    }
+
+    #[test]
+    fn a_placed_ball_out_of_the_room_or_in_another_is_named_with_its_line() {
+        let text = error_text(
+            "[[balls.placement]]\nposition = [0, 1, 0]\n\n[[balls.placement]]\nposition = [0.1, 1, 0]\n",
+        );
+        assert!(
+            text.starts_with("test.toml:5: balls.placement[1]: ball 1 at ")
+                && text.contains("overlaps ball 0"),
+            "{text}"
+        );
+        let text = error_text("[[balls.placement]]\nposition = [0, 9, 0]\n");
+        assert!(
+            text.starts_with("test.toml:2: balls.placement[0]: ball 0 at ")
+                && text.contains("inside the room"),
+            "{text}"
+        );
+        let text = error_text("[[balls.placement]]\nposition = [-2.2, 0.3, -1.2]\n");
+        assert!(
+            text.starts_with("test.toml:2: balls.placement[0]: ball 0")
+                && text.contains("tumbler 0"),
+            "{text}"
+        );
+        let text = error_text("[[balls.placement]]\nposition = [0, 1, 0]\nradius = -1\n");
+        assert!(
+            text.starts_with("test.toml:3: balls.placement[0].radius = -1 is out of range"),
+            "{text}"
+        );
+        let text = error_text("[[balls.placement]]\nvelocity = [0, 1, 0]\n");
+        assert!(text.contains("missing key `position`"), "{text}");
+        let text = error_text("[[balls.placement]]\nposition = [0, 1, 0]\nspeed = 3\n");
+        assert!(
+            text.starts_with("test.toml:3: unknown key `balls.placement.speed`"),
+            "{text}"
         );
     }
 

@@ -6,12 +6,12 @@ use std::ops::Range;
 
 use glam::DVec3;
 use rolypoly_fx::EffectsConfig;
-use rolypoly_physics::{SphereSpec, TumblerPlacement};
+use rolypoly_physics::{BallPlacement, SphereSpec, TumblerPlacement};
 use rolypoly_render::LightConfig;
 use toml::Spanned;
 
 use super::checks::ITERATIONS;
-use super::file::{FileEffects, FileLight, FileScene, rgb};
+use super::file::{FileBallPlacement, FileEffects, FileLight, FileScene, rgb};
 use super::{Location, MAX_BALLS, PARTICLE_CAPACITY, SURFACE_NAMES, Scene, SceneError, line_of};
 
 pub(super) struct Overlay<'a> {
@@ -79,6 +79,33 @@ impl Overlay<'_> {
                 allowed: format!("{} ..= {}", range.0, range.1),
             }),
         }
+    }
+
+    /// One `[[balls.placement]]`, its keys noted as `balls.placement[i].key`.
+    fn ball_placement(&mut self, i: usize, p: FileBallPlacement) -> BallPlacement {
+        let key = format!("balls.placement[{i}]");
+        self.note(&key, p.position.span());
+        let mut placement = BallPlacement::new(DVec3::ZERO, DVec3::ZERO);
+        let at = |name: &str| format!("{key}.{name}");
+        self.set(
+            &at("position"),
+            &mut placement.position,
+            Some(p.position),
+            DVec3::from_array,
+        );
+        self.set(
+            &at("velocity"),
+            &mut placement.velocity,
+            p.velocity,
+            DVec3::from_array,
+        );
+        self.set(&at("spin"), &mut placement.spin, p.spin, DVec3::from_array);
+        self.set(&at("color"), &mut placement.color, p.color, |c| {
+            Some(rgb(c))
+        });
+        self.set(&at("radius"), &mut placement.radius, p.radius, Some);
+        self.set(&at("mass"), &mut placement.mass, p.mass, Some);
+        placement
     }
 
     pub(super) fn apply(&mut self, file: FileScene, scene: &mut Scene) -> Result<(), SceneError> {
@@ -154,6 +181,13 @@ impl Overlay<'_> {
                 |v| v,
             );
             self.set("balls.color", &mut c.balls.color, balls.color, rgb);
+            if let Some(placements) = balls.placement {
+                c.balls.placements = placements
+                    .into_iter()
+                    .enumerate()
+                    .map(|(i, p)| self.ball_placement(i, p))
+                    .collect();
+            }
         }
 
         if let Some(t) = file.tumblers {
