@@ -129,14 +129,23 @@ pub(super) struct Impacts {
 
 impl Impacts {
     /// Lists each slot's neighbours from the contacts' pairs, by counting
-    /// sort: in slot order, whatever the threads found them in.
-    fn list_neighbours(&mut self, pair_slots: &[Vec<PairSlots>], slots: usize) {
+    /// sort: in slot order, whatever the threads found them in. `partners`
+    /// holds how many each slot has, counted while the pairs were found.
+    fn list_neighbours(&mut self, pair_slots: &[Vec<PairSlots>], partners: &[u8]) {
+        let slots = partners.len();
         let first = &mut self.first;
         first.clear();
         first.resize(slots + 1, 0);
-        for &[i, j] in pair_slots.iter().flatten() {
-            first[i as usize + 1] += 1;
-            first[j as usize + 1] += 1;
+        if partners.contains(&u8::MAX) {
+            // A count that saturated: count again, in full.
+            for &[i, j] in pair_slots.iter().flatten() {
+                first[i as usize + 1] += 1;
+                first[j as usize + 1] += 1;
+            }
+        } else {
+            for (count, &n) in first[1..].iter_mut().zip(partners) {
+                *count = u32::from(n);
+            }
         }
         for k in 0..slots {
             first[k + 1] += first[k];
@@ -251,7 +260,7 @@ impl World {
                 continue;
             }
             if !impacts.listed {
-                impacts.list_neighbours(&self.contacts.pair_slots, self.balls.len());
+                impacts.list_neighbours(&self.contacts.pair_slots, &self.ball_partners);
             }
             for k in [Some(i), j].into_iter().flatten() {
                 if impacts.met[k] < IMPACTS_PER_BALL {
@@ -278,7 +287,7 @@ impl World {
         let d = self.path_at(impacts, a, from) - self.path_at(impacts, b, from);
         let v = self.balls.velocity[a] - self.balls.velocity[b];
         let reach = self.balls.radius[a] + self.balls.radius[b];
-        if self.ball_partners[a] > PACKED && self.ball_partners[b] > PACKED {
+        if self.ball_partners[a] > PACKED || self.ball_partners[b] > PACKED {
             return;
         }
         let Some(t) = first_touch(d, v, reach, setting.dt - from) else {
