@@ -44,12 +44,12 @@ const RESTING_SPEED: f64 = 1e-6;
 /// past this, its contacts are left to the contact solver, which stops them.
 const IMPACTS_PER_BALL: u32 = 8;
 
-/// A ball with more contacts than this lies packed in a crowd (a plane
-/// of touching balls gives each six). An impact between two such balls is
-/// left to the contact solver, which stops it together with its crowd: a
-/// pile takes a blow as one body, and following it ball by ball through
-/// thousands of contacts would cost far more than it shows.
-const PACKED: u8 = 6;
+/// A ball with more contacts than this lies packed in a crowd (a plane of
+/// touching balls gives each six, a heap up to twelve). An impact on such a
+/// ball is left to the contact solver, which stops it together with its
+/// crowd: a heap takes a blow as one body, and following the blow ball by
+/// ball through thousands of contacts would cost far more than it shows.
+const PACKED: u8 = 8;
 
 /// What a ball strikes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
