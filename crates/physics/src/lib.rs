@@ -26,7 +26,6 @@ mod rng;
 mod room;
 mod threads;
 mod tumbler;
-mod warm;
 mod world;
 
 pub use balls::{Balls, Tint};

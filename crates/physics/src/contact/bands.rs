@@ -1,7 +1,7 @@
 //! Sweeping the ball pairs band by band, the even bands side by side and
 //! then the odd ones, so that a sweep is the same on any number of threads.
 
-use crate::warm::WarmPart;
+use super::warm::WarmPart;
 
 use super::{Pair, PairSlots, RowBand};
 
@@ -135,7 +135,7 @@ pub(super) fn in_four_streams<F: FnMut(usize)>(count: usize, mut visit: F) {
 /// Calls `f(z, band, part)` for the bands `bands`, numbered from
 /// `first_band` on, side by side: `part` is the part of a warm start's
 /// recording that band `z` writes (see [`WarmPart`]). A band's pairs are
-/// kept by slots of its own grid layer (see [`crate::warm::pair_owner`]),
+/// kept by slots of its own grid layer (see [`super::warm::pair_owner`]),
 /// so no two bands write one place.
 pub(super) fn by_band_with_own_part<F>(
     bands: &mut [Vec<Pair>],

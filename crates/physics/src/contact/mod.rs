@@ -5,7 +5,11 @@
 //! against wall ([`WallContact`]), have small types of their own, solved
 //! as rows that hold only what an iteration reads ([`PairRow`], and the
 //! wall rows of [`wall_rows`]).
-//! The solver runs in two stages per step:
+//! Most impacts between balls, and of balls on walls, are over before the
+//! solver runs: the world resolves them one by one in the order they happen
+//! (see the world's `impacts`), and hands the solver the contacts with their
+//! new approach speeds. The solver then runs in two stages per step, each
+//! given the step's [`StepContext`]:
 //!
 //! 1. **predict**, on the velocities that will carry the bodies through the
 //!    step: no contact may close more than its gap (speculative contacts, so
@@ -14,11 +18,14 @@
 //!    end with the bounce their restitution asks for (measured from the
 //!    approach speed before the step), or at rest.
 //!
-//! Only lone impacts bounce (see [`Crowd`]); contacts with a tumbler bounce
-//! in stage 1 already (see [`solve_predict`]). Every other impulse stops an
-//! approach and nothing more, so no stage can add energy.
+//! Of the impacts left to the solver (those of balls packed in a crowd, and
+//! every contact with a tumbler), only lone ones bounce (see [`Crowd`]);
+//! contacts with a tumbler bounce in stage 1 already (see [`solve_predict`]).
+//! Every other impulse stops an approach and nothing more, so no stage can
+//! add energy.
 //!
 //! The parts, a file each: [`stages`], the two stages read top to bottom;
+//! [`warm`], last step's impulses to start from;
 //! [`bands`], how a sweep over the ball pairs runs on any number of
 //! threads with the same result; [`wall_rows`], ball-wall contacts with
 //! friction; [`crowd`], which impacts are lone. This file holds the
@@ -27,7 +34,6 @@
 use crate::balls::Balls;
 use crate::room::Surface;
 use crate::tumbler::{Response, Tumbler, TumblerShape};
-use crate::warm::{WarmPart, WarmStart};
 use glam::{DMat3, DVec3};
 use rayon::prelude::*;
 
@@ -35,12 +41,15 @@ mod bands;
 mod crowd;
 pub(crate) mod stages;
 mod wall_rows;
+pub(crate) mod warm;
 
 pub(crate) use bands::PARALLEL_PAIRS;
 use bands::{by_band_with_own_part, in_four_streams, sweep_bands};
 pub(crate) use crowd::Crowd;
-pub(crate) use stages::{solve_predict, solve_project};
+pub(crate) use stages::{StepContext, solve_predict, solve_project};
 use wall_rows::WallRows;
+use warm::WarmPart;
+pub(crate) use warm::WarmStart;
 
 /// Surfaces closer than this (metres) at the end of a step count as touching.
 const TOUCHING: f64 = 1e-6;
@@ -275,8 +284,8 @@ pub(crate) struct Contacts {
     pair_count: usize,
     /// Balls against walls, in slot order.
     pub walls: Vec<WallContact>,
-    /// Every other contact: each involves a tumbler.
-    pub others: Vec<Contact>,
+    /// Every contact with a tumbler: of a ball, another tumbler or a wall.
+    pub tumbler_contacts: Vec<Contact>,
     /// Per band, the pairs a solver stage iterates on (see [`PairRow`]).
     rows: Vec<RowBand>,
     /// The ball-wall contacts a solver stage iterates on (see [`wall_rows`]).
@@ -294,7 +303,7 @@ impl Contacts {
         self.pair_slots.iter_mut().for_each(Vec::clear);
         self.pair_count = 0;
         self.walls.clear();
-        self.others.clear();
+        self.tumbler_contacts.clear();
     }
 
     /// Counts the pairs once the bands are filled.
@@ -358,7 +367,7 @@ impl Contacts {
     where
         G: FnMut(&mut Contact, &mut Bodies),
     {
-        for c in &mut self.others {
+        for c in &mut self.tumbler_contacts {
             solve(c, bodies);
         }
     }

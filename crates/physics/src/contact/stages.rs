@@ -1,10 +1,33 @@
 //! The solver's two stages per step, predict and project (see the
 //! module above for what each does).
 
+use super::warm::{Held, WarmStart};
 use crate::balls::Balls;
-use crate::warm::{Held, WarmStart};
 
 use super::{Bodies, Contact, Contacts, Crowd, Pair, TOUCHING};
+
+/// One step as the solver stages see it (after Box2D's step context): the
+/// step's settings, the bodies and contacts they work on, last step's
+/// impulses to start from and where this step's are recorded.
+pub(crate) struct StepContext<'a> {
+    pub dt: f64,
+    /// Gauss-Seidel sweeps per stage.
+    pub iterations: usize,
+    /// Below this approach speed (m/s) an impact rests instead of bouncing.
+    pub bounce_threshold: f64,
+    pub ball_restitution: f64,
+    pub bodies: Bodies<'a>,
+    pub contacts: &'a mut Contacts,
+    pub crowd: &'a mut Crowd,
+    /// Per ball: bounced off a wall while moving this step.
+    pub hit_wall: &'a [bool],
+    /// Last step's impulses, and each slot's ball number, if warm started.
+    pub warm: Option<(&'a WarmStart, &'a [u32])>,
+    /// Where this step's impulses are recorded.
+    pub record: &'a mut WarmStart,
+    /// Each slot's ball number.
+    pub ids: &'a [u32],
+}
 
 /// Stage 1: speculative, non-penetrating velocities for the coming step.
 ///
@@ -16,16 +39,17 @@ use super::{Bodies, Contact, Contacts, Crowd, Pair, TOUCHING};
 /// With `warm` (last step's impulses and each slot's ball number) pairs and
 /// ball-wall contacts start from the impulse that held them last step; the
 /// impulses they end with are kept for [`solve_project`] to record.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn solve_predict(
-    bodies: &mut Bodies,
-    contacts: &mut Contacts,
-    crowd: &mut Crowd,
-    iterations: usize,
-    dt: f64,
-    bounce_threshold: f64,
-    warm: Option<(&WarmStart, &[u32])>,
-) {
+pub(crate) fn solve_predict(step: &mut StepContext) {
+    let StepContext {
+        dt,
+        iterations,
+        bounce_threshold,
+        ref mut bodies,
+        ref mut contacts,
+        ref mut crowd,
+        warm,
+        ..
+    } = *step;
     // Every ball within reach counts against a bounce, touching or not: a
     // ball sent back by a tumbler may meet a neighbour it was leaving, and
     // pressing it would make the bounce pump energy. Other contacts count
@@ -33,7 +57,7 @@ pub(crate) fn solve_predict(
     let touching =
         |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
-    let may_bounce = !contacts.others.is_empty();
+    let may_bounce = !contacts.tumbler_contacts.is_empty();
     crowd.forget_asked(bodies.balls.len());
     if may_bounce {
         crowd.gather(contacts, bodies.tumblers.len(), false, |_| true);
@@ -48,7 +72,7 @@ pub(crate) fn solve_predict(
             }
         }
     }
-    for c in contacts.others.iter_mut() {
+    for c in contacts.tumbler_contacts.iter_mut() {
         bodies.prepare(c);
         c.impulse = 0.0;
         // Gravity's half step, which the contact's two sides may not share.
@@ -57,7 +81,7 @@ pub(crate) fn solve_predict(
             crowd.add(c);
         }
     }
-    for c in contacts.others.iter_mut() {
+    for c in contacts.tumbler_contacts.iter_mut() {
         c.bounce =
             c.approach < -bounce_threshold && c.gap + c.approach * dt <= 0.0 && crowd.lone(c);
     }
@@ -99,7 +123,7 @@ pub(crate) fn solve_predict(
             crowd.will_ask(p.j);
         }
     });
-    for c in contacts.others.iter_mut() {
+    for c in contacts.tumbler_contacts.iter_mut() {
         c.pushed = c.impulse;
     }
     for c in contacts.walls.iter_mut() {
@@ -168,20 +192,22 @@ fn warm_start_walls(
 ///
 /// Warm started from `warm` as the predict stage. The impulses of both
 /// stages are recorded into `record` for the next step's warm start.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn solve_project(
-    bodies: &mut Bodies,
-    contacts: &mut Contacts,
-    crowd: &mut Crowd,
-    iterations: usize,
-    bounce_threshold: f64,
-    ball_restitution: f64,
-    hit_wall: &[bool],
-    warm: Option<(&WarmStart, &[u32])>,
-    record: (&mut WarmStart, &[u32]),
-) {
+pub(crate) fn solve_project(step: &mut StepContext) {
+    let StepContext {
+        iterations,
+        bounce_threshold,
+        ball_restitution,
+        ref mut bodies,
+        ref mut contacts,
+        ref mut crowd,
+        hit_wall,
+        warm,
+        ref mut record,
+        ids,
+        ..
+    } = *step;
     crowd.gather(contacts, bodies.tumblers.len(), true, |p| p.pushed);
-    for c in contacts.others.iter().filter(|c| c.pushed > 0.0) {
+    for c in contacts.tumbler_contacts.iter().filter(|c| c.pushed > 0.0) {
         crowd.add_if_asked(c);
     }
     for c in contacts.walls.iter().filter(|c| c.pushed > 0.0) {
@@ -190,7 +216,7 @@ pub(crate) fn solve_project(
         }
     }
     // A tumbler's contacts bounced in the predict stage already.
-    for c in contacts.others.iter_mut() {
+    for c in contacts.tumbler_contacts.iter_mut() {
         c.bounce = false;
         c.impulse = 0.0;
         if c.pushed > 0.0 {
@@ -243,10 +269,9 @@ pub(crate) fn solve_project(
             }
         });
     }
-    let (warm_next, ids) = record;
-    contacts.record_row_impulses((&mut *warm_next, ids));
+    contacts.record_row_impulses((&mut **record, ids));
     contacts.keep_wall_impulses(|c| c.pushed > 0.0);
     for c in &contacts.walls {
-        warm_next.record_wall(c.ball as usize, c.surface, [c.pushed, c.impulse]);
+        record.record_wall(c.ball as usize, c.surface, [c.pushed, c.impulse]);
     }
 }

@@ -9,17 +9,34 @@ use crate::room::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
 
-use super::{SolverParts, TOUCH_SLOP, World};
+use super::{TOUCH_SLOP, World};
 
 impl World {
     /// All contacts that may act during the coming step.
     pub(super) fn collect_contacts(&mut self, dt: f64) {
+        self.collect_ball_pairs(dt);
+        self.collect_wall_contacts(dt);
+        self.collect_tumbler_contacts(dt);
+        // Approach speeds before anything moves: what restitution acts on
+        // (pairs and walls have theirs from when they were found).
+        let step = self.step_context(false);
+        let (bodies, contacts) = (&step.bodies, step.contacts);
+        for c in contacts.tumbler_contacts.iter_mut() {
+            c.approach = bodies.normal_velocity(c);
+        }
+    }
+
+    /// How far a contact may be from touching and still be kept: a
+    /// contact is kept if its gap could close within the step, up to one
+    /// ball radius (the grid's cell allows for that).
+    fn speculative_reach(&self) -> f64 {
+        self.config.balls.radius
+    }
+
+    /// Pairs of balls that may touch within the step, band by band.
+    fn collect_ball_pairs(&mut self, dt: f64) {
         let balls = &self.balls;
-        let room = &self.room;
-        let cfg = &self.config;
-        // A contact is kept if its gap could close within the step; speculative
-        // reach is capped at one ball radius (the grid's cell allows for that).
-        let reach_cap = cfg.balls.radius;
+        let reach_cap = self.speculative_reach();
         let contacts = &mut self.contacts;
 
         // Each ball's share of the pair test below: its radius and how far
@@ -75,6 +92,16 @@ impl World {
             bands.enumerate().for_each(find_pairs);
         }
         contacts.count_pairs();
+    }
+
+    /// Balls against the walls, once each ball's partners are counted.
+    fn collect_wall_contacts(&mut self, dt: f64) {
+        let balls = &self.balls;
+        let cfg = &self.config;
+        let reach_cap = self.speculative_reach();
+        let contacts = &mut self.contacts;
+        let room = &self.room;
+        let speed = &self.speed;
 
         // Balls resting on or touching a wall. A lone ball's impacts are
         // found exactly while moving (see `move_balls`); a ball pressed by
@@ -143,6 +170,15 @@ impl World {
         for layer in by_layer.iter() {
             contacts.walls.extend_from_slice(layer);
         }
+    }
+
+    /// Every contact of a tumbler: with balls, other tumblers and walls.
+    fn collect_tumbler_contacts(&mut self, dt: f64) {
+        let balls = &self.balls;
+        let cfg = &self.config;
+        let reach_cap = self.speculative_reach();
+        let contacts = &mut self.contacts;
+        let room = &self.room;
 
         // Balls against tumblers: the grid narrows to balls near the bounding
         // sphere, then the six spheres give the contact (P7).
@@ -169,7 +205,7 @@ impl World {
                         let closing = (balls.velocity[bi] - t.point_velocity(c)).length() * dt;
                         if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
                             let n = d / dist;
-                            contacts.others.push(Contact::new(
+                            contacts.tumbler_contacts.push(Contact::new(
                                 BodyRef::Ball(bi),
                                 BodyRef::Tumbler(ti, si),
                                 n,
@@ -205,7 +241,7 @@ impl World {
                         let closing = (ta.point_velocity(pa) - tb.point_velocity(pb)).length() * dt;
                         if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
                             let n = d / dist;
-                            contacts.others.push(Contact::new(
+                            contacts.tumbler_contacts.push(Contact::new(
                                 BodyRef::Tumbler(a, si),
                                 BodyRef::Tumbler(b, sj),
                                 n,
@@ -231,7 +267,7 @@ impl World {
                     let gap = room.distance(*wall, c) - s.radius;
                     if gap < speed.min(reach_cap) + TOUCH_SLOP {
                         let n = wall.inward_normal();
-                        contacts.others.push(Contact::new(
+                        contacts.tumbler_contacts.push(Contact::new(
                             BodyRef::Tumbler(a, si),
                             BodyRef::Wall(*wall),
                             n,
@@ -242,15 +278,6 @@ impl World {
                     }
                 }
             }
-        }
-
-        // Approach speeds before anything moves: what restitution acts on
-        // (pairs and walls have theirs from when they were found).
-        let SolverParts {
-            bodies, contacts, ..
-        } = self.solver_parts(false);
-        for c in contacts.others.iter_mut() {
-            c.approach = bodies.normal_velocity(c);
         }
     }
 }

@@ -1,17 +1,22 @@
 //! The world: all bodies, and the fixed step that moves them.
 //!
-//! One step of `dt`, in order (each part in the file named):
+//! One step of `dt`, in order (each part in the file named; in Box2D's
+//! words, prepare, restitution, warm start and solve, integrate, relax and
+//! store):
 //! 1. find contacts at the current positions, with the grid broadphase for
 //!    balls (`find_contacts`);
 //! 2. half a step of gravity on the balls' velocities (the step-average
 //!    velocity);
-//! 3. solve contacts on those velocities (predict stage, speculative; see
-//!    [`crate::contact`]);
-//! 4. move: balls along exact parabolas with exact wall impacts, tumblers by
+//! 3. resolve the step's impacts one by one in the order they happen, each
+//!    between its two bodies (`impacts`);
+//! 4. solve contacts on those velocities (predict stage, speculative and
+//!    warm-started; see [`crate::contact`], which gets a [`StepContext`]);
+//! 5. move: balls along exact parabolas with exact wall impacts, tumblers by
 //!    integrating their grounded rolling/sliding equations (`flight`);
-//! 5. resolve bounces and rests (project stage), emit events, take on
-//!    colours (`report`);
-//! 6. separate any remaining overlaps (`overlaps`), then move the fireball
+//! 6. end the contacts that pushed at rest, bounce what impacts were left
+//!    to the solver, and record the impulses for the next warm start
+//!    (project stage); emit events, take on colours (`report`);
+//! 7. separate any remaining overlaps (`overlaps`), then move the fireball
 //!    (`fireball_flight`).
 //!
 //! Around the step: where balls start (`spawn`) and the hand that holds a
@@ -23,8 +28,10 @@
 use crate::balls::{Balls, PARALLEL_BALLS, PARALLEL_LIGHT_PASSES, Tint};
 use crate::broadphase::Grid;
 use crate::config::{Rgb, WorldConfig};
+use crate::contact::WarmStart;
 use crate::contact::{
-    Bodies, Contacts, Crowd, PARALLEL_PAIRS, Pair, WallContact, solve_predict, solve_project,
+    Bodies, Contacts, Crowd, PARALLEL_PAIRS, Pair, StepContext, WallContact, solve_predict,
+    solve_project,
 };
 use crate::events::Event;
 use crate::fireball::Fireball;
@@ -32,7 +39,6 @@ use crate::rng::Rng;
 use crate::room::Room;
 use crate::threads::with_workers_awake;
 use crate::tumbler::{Tumbler, TumblerShape};
-use crate::warm::WarmStart;
 use glam::{DMat3, DVec3, Vec4};
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -132,20 +138,6 @@ where
     total
 }
 
-/// The world's parts that the contact solver reads and writes.
-struct SolverParts<'a> {
-    bodies: Bodies<'a>,
-    contacts: &'a mut Contacts,
-    crowd: &'a mut Crowd,
-    hit_wall: &'a [bool],
-    /// Last step's impulses, and each slot's ball number.
-    warm: Option<(&'a WarmStart, &'a [u32])>,
-    /// Where this step's impulses are recorded.
-    record: &'a mut WarmStart,
-    /// Each slot's ball number.
-    ids: &'a [u32],
-}
-
 pub struct World {
     config: WorldConfig,
     room: Room,
@@ -183,7 +175,7 @@ pub struct World {
     crowd: Crowd,
     impacts: impacts::Impacts,
     /// Last step's impulses of both solver stages, by ball number (see
-    /// [`crate::warm`]), and this step's, which take their place once the
+    /// [`crate::contact::warm`]), and this step's, which take their place once the
     /// step is done.
     warm: WarmStart,
     warm_next: WarmStart,
@@ -543,40 +535,15 @@ impl World {
         });
         self.resolve_impacts(dt, g);
         self.update_contact_inertia();
-        let (iterations, threshold) = (
-            self.config.solver.iterations,
-            self.config.solver.bounce_threshold,
-        );
-        let mut parts = self.solver_parts(warm_start);
-        solve_predict(
-            &mut parts.bodies,
-            parts.contacts,
-            parts.crowd,
-            iterations,
-            dt,
-            threshold,
-            parts.warm,
-        );
+        solve_predict(&mut self.step_context(warm_start));
         self.apply_rolling_resistance();
 
         self.move_balls(dt, g);
         self.move_tumblers(dt);
 
         self.update_contact_inertia();
-        let restitution = self.config.balls.restitution;
         self.begin_recording();
-        let mut parts = self.solver_parts(warm_start);
-        solve_project(
-            &mut parts.bodies,
-            parts.contacts,
-            parts.crowd,
-            iterations,
-            threshold,
-            restitution,
-            parts.hit_wall,
-            parts.warm,
-            (parts.record, parts.ids),
-        );
+        solve_project(&mut self.step_context(warm_start));
         self.report_contacts();
         // Pushing sunk balls apart lifts them: it may spend what the step
         // has lost, no more.
@@ -651,9 +618,9 @@ impl World {
         self.warm_next.begin(slot_of, slots, pairs);
     }
 
-    /// What the solver works on, borrowed apart, with last step's impulses
-    /// if the step is warm started, and where to record this step's.
-    fn solver_parts(&mut self, warm_start: bool) -> SolverParts<'_> {
+    /// What the solver stages work on, borrowed apart, with last step's
+    /// impulses if the step is warm started, and where to record this step's.
+    fn step_context(&mut self, warm_start: bool) -> StepContext<'_> {
         let bodies = Bodies {
             balls: &mut self.balls,
             tumblers: &mut self.tumblers,
@@ -663,7 +630,12 @@ impl World {
             wall_restitution: self.config.room.restitution,
             wall_friction: self.config.room.friction,
         };
-        SolverParts {
+        let solver = &self.config.solver;
+        StepContext {
+            dt: solver.dt,
+            iterations: solver.iterations,
+            bounce_threshold: solver.bounce_threshold,
+            ball_restitution: self.config.balls.restitution,
             bodies,
             contacts: &mut self.contacts,
             crowd: &mut self.crowd,

@@ -100,8 +100,8 @@ impl World {
             self.separate_balls(p.i as usize, p.j as usize);
         }
         self.picked_pairs = lone_pairs;
-        for k in 0..self.contacts.others.len() {
-            let c = &self.contacts.others[k];
+        for k in 0..self.contacts.tumbler_contacts.len() {
+            let c = &self.contacts.tumbler_contacts[k];
             match (c.a, c.b) {
                 (BodyRef::Ball(i), BodyRef::Tumbler(t, s)) => {
                     let centre = self.tumblers[t].sphere_center(shape, s);

@@ -40,7 +40,7 @@ impl World {
                 speed: -c.approach,
             });
         }
-        for c in &self.contacts.others {
+        for c in &self.contacts.tumbler_contacts {
             if c.pushed <= 0.0 || -c.approach <= threshold {
                 continue;
             }

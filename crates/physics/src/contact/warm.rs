@@ -14,9 +14,9 @@
 //! add energy; [`crate::World::step`] takes such excess back out of the
 //! step's motion.
 
-use crate::contact::Pair;
+use super::Pair;
 #[cfg(doc)]
-use crate::contact::stages::Stage;
+use super::stages::Stage;
 use crate::room::Surface;
 
 /// Last step's normal impulses of ball pairs and ball-wall contacts, of
