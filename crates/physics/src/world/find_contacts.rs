@@ -42,7 +42,7 @@ impl World {
         // Each ball's share of the pair test below: its radius and how far
         // it could fly, so that resting balls look no further than touching;
         // widened by more than `f32` rounds off in a room of any size.
-        let (spheres, speed) = (&mut self.pair_spheres, &mut self.speed);
+        let (spheres, speed) = (&mut self.scratch.pair_spheres, &mut self.scratch.speed);
         speed.clear();
         speed.extend(balls.velocity.iter().map(|v| v.length()));
         spheres.clear();
@@ -52,7 +52,7 @@ impl World {
             let rounding = 1e-6 * (1.0 + p.abs().max_element());
             p.as_vec3().extend((reach + rounding) as f32)
         }));
-        let (spheres, speed) = (&self.pair_spheres, &self.speed);
+        let (spheres, speed) = (&self.scratch.pair_spheres, &self.scratch.speed);
         let grid = &self.grid;
         contacts.reset(grid.layer_count());
         grid.layer_slots(&mut contacts.layers);
@@ -101,14 +101,14 @@ impl World {
         let reach_cap = self.speculative_reach();
         let contacts = &mut self.contacts;
         let room = &self.room;
-        let speed = &self.speed;
+        let speed = &self.scratch.speed;
 
         // Balls resting on or touching a wall. A lone ball's impacts are
         // found exactly while moving (see `move_balls`); a ball pressed by
         // others gets a speculative contact with every wall it could reach
         // in the step, so that it stops there with them instead of bouncing
         // back into them (which would sink balls into each other).
-        let partners = &mut self.ball_partners;
+        let partners = &mut self.scratch.ball_partners;
         partners.clear();
         partners.resize(balls.len(), 0);
         contacts.sweep_pair_slots(partners, &|[i, j], partners, first| {
@@ -116,7 +116,7 @@ impl World {
                 partners[k] = partners[k].saturating_add(1);
             }
         });
-        let partners = &self.ball_partners;
+        let partners = &self.scratch.ball_partners;
         let bounce_threshold = cfg.solver.bounce_threshold;
         let touch_walls = |i: usize, into: &mut Vec<WallContact>| {
             let crowded = partners[i] > 0;
@@ -156,7 +156,7 @@ impl World {
         // Layer by layer, each into its own list, then in layer order: the
         // same contacts in the same order on any number of threads.
         let layers = &contacts.layers;
-        let by_layer = &mut self.wall_contacts_by_layer;
+        let by_layer = &mut self.scratch.wall_contacts_by_layer;
         by_layer.resize_with(layers.len() - 1, Vec::new);
         let fill = |(z, into): (usize, &mut Vec<WallContact>)| {
             into.clear();

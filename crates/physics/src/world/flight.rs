@@ -41,17 +41,17 @@ impl World {
         let solver = &self.config.solver;
         let (e, mu) = (self.config.room.restitution, self.config.room.friction);
         for i in 0..self.balls.len() {
-            self.hit_wall[i] = false;
+            self.scratch.hit_wall[i] = false;
             if !self.balls.alive[i] {
                 continue;
             }
             let r = self.balls.radius[i];
-            if self.ball_partners[i] > 0 {
+            if self.scratch.ball_partners[i] > 0 {
                 // Its walls are in the solver already (see `collect_contacts`):
                 // the step-average velocity carries it along its parabola,
                 // from where its impacts moved the path's start.
                 let v = self.balls.velocity[i];
-                let start = self.balls.position[i] + self.impacts.shift(i);
+                let start = self.balls.position[i] + self.scratch.impacts.shift(i);
                 self.balls.position[i] = room.clamp_sphere(start + v * dt, r);
                 self.balls.velocity[i] = v + 0.5 * dt * gravity;
                 continue;
@@ -87,7 +87,7 @@ impl World {
                 // Sit exactly on the wall.
                 x += n * (r - room.distance(s, x));
                 let speed = -n.dot(u);
-                self.hit_wall[i] = true;
+                self.scratch.hit_wall[i] = true;
                 // Slower than the threshold, it comes to rest on the wall.
                 let bounces = speed > solver.bounce_threshold;
                 let restitution = if bounces { e } else { 0.0 };

@@ -205,7 +205,7 @@ impl World {
     /// above), on the step-average velocities. Collects nothing when
     /// nothing collides.
     pub(super) fn resolve_impacts(&mut self, dt: f64, gravity: DVec3) {
-        let mut impacts = std::mem::take(&mut self.impacts);
+        let mut impacts = std::mem::take(&mut self.scratch.impacts);
         impacts.clear(self.balls.len());
         let threshold = self.config.solver.bounce_threshold.max(RESTING_SPEED);
         let due = |p: &Pair| p.approach < -threshold && p.gap + p.approach * dt <= 0.0;
@@ -227,12 +227,12 @@ impl World {
         for c in &self.contacts.walls {
             let reaches = c.gap + c.approach.min(0.0) * dt - 0.5 * fall * dt <= 0.0;
             let fast = c.approach - fall < -threshold;
-            if self.ball_partners[c.ball as usize] > 0 && reaches && fast {
+            if self.scratch.ball_partners[c.ball as usize] > 0 && reaches && fast {
                 self.queue_wall(&mut impacts, &setting, c.ball as usize, c.surface, 0.0);
             }
         }
         if impacts.queue.is_empty() {
-            self.impacts = impacts;
+            self.scratch.impacts = impacts;
             return;
         }
         while let Some(c) = impacts.queue.pop() {
@@ -260,7 +260,7 @@ impl World {
                 continue;
             }
             if !impacts.listed {
-                impacts.list_neighbours(&self.contacts.pair_slots, &self.ball_partners);
+                impacts.list_neighbours(&self.contacts.pair_slots, &self.scratch.ball_partners);
             }
             for k in [Some(i), j].into_iter().flatten() {
                 if impacts.met[k] < IMPACTS_PER_BALL {
@@ -271,7 +271,7 @@ impl World {
         if !impacts.touched.is_empty() {
             self.hand_impacts_to_contacts(&impacts, &setting);
         }
-        self.impacts = impacts;
+        self.scratch.impacts = impacts;
     }
 
     /// Where slot `i` is at time `t` of the step, but for the fall that
@@ -287,7 +287,7 @@ impl World {
         let d = self.path_at(impacts, a, from) - self.path_at(impacts, b, from);
         let v = self.balls.velocity[a] - self.balls.velocity[b];
         let reach = self.balls.radius[a] + self.balls.radius[b];
-        if self.ball_partners[a] > PACKED || self.ball_partners[b] > PACKED {
+        if self.scratch.ball_partners[a] > PACKED || self.scratch.ball_partners[b] > PACKED {
             return;
         }
         let Some(t) = first_touch(d, v, reach, setting.dt - from) else {

@@ -144,9 +144,6 @@ pub struct World {
     /// Shared, so that a step may hold it while it changes the world.
     shape: Arc<TumblerShape>,
     balls: Balls,
-    /// The live balls in the grid's cell order, which the step works on so
-    /// that neighbours in space are neighbours in memory (see `step`).
-    sorted: Balls,
     tumblers: Vec<Tumbler>,
     fireball: Option<Fireball>,
     rng: Rng,
@@ -155,6 +152,23 @@ pub struct World {
     events: Vec<Event>,
     grid: Grid,
     contacts: Contacts,
+    /// Last step's impulses of both solver stages, by ball number (see
+    /// [`crate::contact::warm`]), and this step's, which take their place once the
+    /// step is done.
+    warm: WarmStart,
+    warm_next: WarmStart,
+    retakes: u64,
+    scratch: StepScratch,
+}
+
+/// What a step works in and forgets: kept between steps only so that a
+/// step allocates nothing.
+#[derive(Default)]
+struct StepScratch {
+    /// The live balls in the grid's cell order, which the step works on so
+    /// that neighbours in space are neighbours in memory (see `step`).
+    sorted: Balls,
+    /// Per tumbler: inverse inertia about its floor contact (world axes).
     contact_inv: Vec<DMat3>,
     /// Per ball: bounced off a wall while moving this step (see `solve_project`).
     hit_wall: Vec<bool>,
@@ -174,14 +188,8 @@ pub struct World {
     wall_contacts_by_layer: Vec<Vec<WallContact>>,
     crowd: Crowd,
     impacts: impacts::Impacts,
-    /// Last step's impulses of both solver stages, by ball number (see
-    /// [`crate::contact::warm`]), and this step's, which take their place once the
-    /// step is done.
-    warm: WarmStart,
-    warm_next: WarmStart,
     /// The state before a step, to retake it if its warm start made energy.
     before_step: (Balls, Vec<Tumbler>),
-    retakes: u64,
 }
 
 impl World {
@@ -233,10 +241,13 @@ impl World {
         let touch = 3.0 * b.largest_radius() + 4.0 * TOUCH_SLOP;
         let spacing = (room.size().element_product() / b.total().max(1) as f64).cbrt();
         let grid = Grid::new(room.min, room.max, touch.max(spacing));
+        let scratch = StepScratch {
+            contact_inv: vec![DMat3::IDENTITY; tumblers.len()],
+            hit_wall: vec![false; b.total()],
+            ..StepScratch::default()
+        };
         let mut world = World {
             balls: Balls::with_uniform(b.total(), b.radius, b.mass),
-            sorted: Balls::default(),
-            contact_inv: vec![DMat3::IDENTITY; tumblers.len()],
             tumblers,
             fireball: None,
             rng: Rng::new(seed),
@@ -245,19 +256,10 @@ impl World {
             events: Vec::new(),
             grid,
             contacts: Contacts::default(),
-            hit_wall: vec![false; b.total()],
-            ball_partners: Vec::new(),
-            picked_pairs: Vec::new(),
-            unpushed: Vec::new(),
-            wall_contacts_by_layer: Vec::new(),
-            pair_spheres: Vec::new(),
-            speed: Vec::new(),
-            crowd: Crowd::default(),
-            impacts: Default::default(),
             warm: Default::default(),
             warm_next: Default::default(),
-            before_step: Default::default(),
             retakes: 0,
+            scratch,
             room,
             shape: Arc::new(shape),
             config,
@@ -424,8 +426,8 @@ impl World {
             self.advance(dt, true, None);
         } else {
             let before = self.energy().total();
-            self.before_step.0.clone_from(&self.balls);
-            self.before_step.1.clone_from(&self.tumblers);
+            self.scratch.before_step.0.clone_from(&self.balls);
+            self.scratch.before_step.1.clone_from(&self.tumblers);
             let first_event = self.events.len();
             self.advance(dt, true, Some(before));
             // Retaken with half the warm start, then none: a cold step alone
@@ -438,8 +440,8 @@ impl World {
                 {
                     break;
                 }
-                self.balls.clone_from(&self.before_step.0);
-                self.tumblers.clone_from(&self.before_step.1);
+                self.balls.clone_from(&self.scratch.before_step.0);
+                self.tumblers.clone_from(&self.scratch.before_step.1);
                 self.events.truncate(first_event);
                 self.warm.weaken(share);
                 self.retakes += 1;
@@ -478,7 +480,7 @@ impl World {
     /// pile sag, and the next warm start overshoot again.
     fn shorten_ball_motion(&mut self, limit: f64) -> bool {
         let g = self.config.gravity;
-        let start = &self.before_step.0;
+        let start = &self.scratch.before_step.0;
         let live = || (0..self.balls.len()).filter(|&i| self.balls.alive[i]);
         let kinetic: f64 = live().map(|i| self.balls.kinetic_energy(i)).sum();
         let rise: f64 = live()
@@ -561,7 +563,7 @@ impl World {
     /// the order of space. Ball numbers in this order are slots.
     fn enter_sorted_order(&mut self) {
         let order = self.grid.order();
-        let (from, to) = (&self.balls, &mut self.sorted);
+        let (from, to) = (&self.balls, &mut self.scratch.sorted);
         fn gather<T: Copy + Send + Sync>(to: &mut Vec<T>, from: &[T], order: &[u32]) {
             to.clear();
             if order.len() >= PARALLEL_LIGHT_PASSES {
@@ -579,14 +581,14 @@ impl World {
         gather(&mut to.tint, &from.tint, order);
         to.alive.clear();
         to.alive.resize(order.len(), true);
-        std::mem::swap(&mut self.balls, &mut self.sorted);
+        std::mem::swap(&mut self.balls, &mut self.scratch.sorted);
     }
 
     /// Writes the sorted balls back to their own numbers, and renumbers the
     /// balls named by the events of this step (from `first_event` on).
     fn leave_sorted_order(&mut self, first_event: usize) {
-        std::mem::swap(&mut self.balls, &mut self.sorted);
-        let (from, to) = (&self.sorted, &mut self.balls);
+        std::mem::swap(&mut self.balls, &mut self.scratch.sorted);
+        let (from, to) = (&self.scratch.sorted, &mut self.balls);
         let slots = self.grid.ball_slots();
         fn scatter<T: Copy + Send + Sync>(to: &mut [T], from: &[T], slots: &[u32]) {
             let put = |(id, x): (usize, &mut T)| {
@@ -625,7 +627,7 @@ impl World {
             balls: &mut self.balls,
             tumblers: &mut self.tumblers,
             shape: &self.shape,
-            contact_inv: &self.contact_inv,
+            contact_inv: &self.scratch.contact_inv,
             floor_friction: self.config.tumblers.floor_friction,
             wall_restitution: self.config.room.restitution,
             wall_friction: self.config.room.friction,
@@ -638,8 +640,8 @@ impl World {
             ball_restitution: self.config.balls.restitution,
             bodies,
             contacts: &mut self.contacts,
-            crowd: &mut self.crowd,
-            hit_wall: &self.hit_wall,
+            crowd: &mut self.scratch.crowd,
+            hit_wall: &self.scratch.hit_wall,
             warm: warm_start.then(|| (&self.warm, self.grid.order())),
             record: &mut self.warm_next,
             ids: self.grid.order(),
@@ -647,7 +649,7 @@ impl World {
     }
 
     fn update_contact_inertia(&mut self) {
-        for (inv, t) in self.contact_inv.iter_mut().zip(&self.tumblers) {
+        for (inv, t) in self.scratch.contact_inv.iter_mut().zip(&self.tumblers) {
             *inv = t.contact_inertia_inverse(&self.shape);
         }
     }

@@ -33,7 +33,7 @@ impl World {
     /// a step is thus exactly what lifting it back costs.
     pub(super) fn push_apart_sunk_balls(&mut self, budget: f64) {
         let balls = &mut self.balls;
-        self.unpushed.clone_from(&balls.position);
+        self.scratch.unpushed.clone_from(&balls.position);
         let (radius, inv_mass) = (&balls.radius, &balls.inv_mass);
         let mut pushed = false;
         for _ in 0..PUSH_SWEEPS {
@@ -73,7 +73,7 @@ impl World {
             return;
         }
         let g = self.config.gravity;
-        let unpushed = &self.unpushed;
+        let unpushed = &self.scratch.unpushed;
         let lift = |i: usize| balls.mass[i] * g * (balls.position[i].y - unpushed[i].y);
         let cost: f64 = sum_in_runs(balls.len(), |run| run.map(lift).sum());
         if cost > budget {
@@ -92,14 +92,14 @@ impl World {
     pub(super) fn separate_overlaps(&mut self) {
         let shape = Arc::clone(&self.shape);
         let shape = &*shape;
-        let mut lone_pairs = std::mem::take(&mut self.picked_pairs);
-        let partners = &self.ball_partners;
+        let mut lone_pairs = std::mem::take(&mut self.scratch.picked_pairs);
+        let partners = &self.scratch.ball_partners;
         let lone = |p: &Pair| partners[p.i as usize] == 1 && partners[p.j as usize] == 1;
         self.contacts.copy_pairs_where(lone, &mut lone_pairs);
         for p in &lone_pairs {
             self.separate_balls(p.i as usize, p.j as usize);
         }
-        self.picked_pairs = lone_pairs;
+        self.scratch.picked_pairs = lone_pairs;
         for k in 0..self.contacts.tumbler_contacts.len() {
             let c = &self.contacts.tumbler_contacts[k];
             match (c.a, c.b) {

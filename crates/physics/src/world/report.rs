@@ -10,7 +10,7 @@ impl World {
     /// Events and colours from the contacts that pushed this step.
     pub(super) fn report_contacts(&mut self) {
         let threshold = self.config.solver.event_threshold;
-        let hits = &mut self.picked_pairs;
+        let hits = &mut self.scratch.picked_pairs;
         let hit = |p: &Pair| p.pushed && -p.approach > threshold;
         self.contacts.copy_pairs_where(hit, hits);
         for p in hits.iter() {
