@@ -70,13 +70,23 @@ pub(crate) fn first_touch(d: DVec3, v: DVec3, reach: f64, horizon: f64) -> Optio
 /// For two spheres whose centres differ by `d + v t`, apart and closing,
 /// the normal along which their contact is solved within `horizon`, and
 /// the gap left along it at t = 0: the line of centres at first touch if
-/// they touch within the horizon, else at their closest approach in it.
+/// they touch within the horizon; else, if they pass by faster than
+/// `pass_by_speed`, the line of centres at their closest approach in it.
+/// `None` where the line of centres at t = 0 serves.
 ///
 /// A speculative contact keeps the gap along its normal from closing; taken
 /// along the line of centres at the start, it would stop two balls that
 /// were only passing close by (a ghost collision, which costs energy).
-/// Along these normals it binds only on balls that really meet.
-pub(crate) fn contact_normal(d: DVec3, v: DVec3, reach: f64, horizon: f64) -> Option<(DVec3, f64)> {
+/// Along these normals it binds only on balls that really meet. Balls that
+/// slide slowly past each other (in a heap, say) keep the line of centres,
+/// which holds them apart whatever the solver's other contacts do to them.
+pub(crate) fn contact_normal(
+    d: DVec3,
+    v: DVec3,
+    reach: f64,
+    horizon: f64,
+    pass_by_speed: f64,
+) -> Option<(DVec3, f64)> {
     let a = v.length_squared();
     let b = d.dot(v);
     let c = d.length_squared() - reach * reach;
@@ -84,12 +94,13 @@ pub(crate) fn contact_normal(d: DVec3, v: DVec3, reach: f64, horizon: f64) -> Op
         return None;
     }
     let disc = b * b - a * c;
-    let t = if disc >= 0.0 {
-        c / (-b + disc.sqrt())
-    } else {
-        -b / a
+    let touch = (disc >= 0.0).then(|| c / (-b + disc.sqrt()));
+    let t = match touch {
+        Some(t) if t <= horizon => t,
+        _ if a > pass_by_speed * pass_by_speed => (-b / a).min(horizon),
+        _ => return None,
     };
-    let n = (d + v * t.min(horizon)).normalize();
+    let n = (d + v * t).normalize();
     Some((n, d.dot(n) - reach))
 }
 

@@ -62,16 +62,15 @@ impl World {
                 let dist = d.length();
                 let gap = dist - balls.radius[i] - balls.radius[j];
                 let relative = balls.velocity[i] - balls.velocity[j];
-                // Either ball may bounce off a wall within the step and come
-                // back at up to its speed: allow for that (which covers their
-                // relative speed too).
-                let closing = 2.0 * (speed[i] + speed[j]) * dt;
-                if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
+                if kept_as_pair(gap, speed[i] + speed[j], dt, reach_cap) && dist > 0.0 {
                     // Gravity moves both alike, so within the step they close
                     // along a straight line: take the normal where they meet.
+                    // (Balls that only pass by keep the line of centres here;
+                    // the impacts stage turns free ones' where they come
+                    // closest.)
                     let reach = balls.radius[i] + balls.radius[j];
-                    let (n, gap) =
-                        contact_normal(d, relative, reach, dt).unwrap_or((d / dist, gap));
+                    let (n, gap) = contact_normal(d, relative, reach, dt, f64::INFINITY)
+                        .unwrap_or((d / dist, gap));
                     // Approach speed before anything moves: what restitution acts on.
                     band.push(Pair::new(i, j, n, gap, relative.dot(n)));
                     slots.push([i as u32, j as u32]);
@@ -280,4 +279,12 @@ impl World {
             }
         }
     }
+}
+
+/// Whether two balls `gap` apart at the step's start, with speeds adding up
+/// to `speeds`, are kept as a pair: if they could touch within the step.
+/// Either ball may bounce off a wall within the step and come back at up to
+/// its speed: that is allowed for (which covers their relative speed too).
+fn kept_as_pair(gap: f64, speeds: f64, dt: f64, reach_cap: f64) -> bool {
+    gap < (2.0 * speeds * dt).min(reach_cap) + TOUCH_SLOP
 }

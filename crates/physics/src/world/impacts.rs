@@ -45,10 +45,9 @@ const RESTING_SPEED: f64 = 1e-6;
 const IMPACTS_PER_BALL: u32 = 8;
 
 /// A ball with more contacts than this lies packed in a crowd (a plane of
-/// touching balls gives each six, a heap up to twelve). An impact on such a
-/// ball is left to the contact solver, which stops it together with its
-/// crowd: a heap takes a blow as one body, and following the blow ball by
-/// ball through thousands of contacts would cost far more than it shows.
+/// touching balls gives each six; a fast ball counts every ball it could
+/// reach within the step). An impact on it is the contact solver's, which
+/// stops it with the crowd: a heap takes a blow as one body.
 const PACKED: u8 = 8;
 
 /// What a ball strikes.
@@ -125,6 +124,10 @@ pub(super) struct Impacts {
     cursor: Vec<u32>,
     /// Whether the neighbours are listed this step (only once needed).
     listed: bool,
+    /// Per slot: whether it rests on another ball (see [`World::stacked`]),
+    /// once asked: 0 not yet, 1 no, 2 yes; and the slots asked.
+    stacked: Vec<u8>,
+    asked: Vec<u32>,
 }
 
 impl Impacts {
@@ -182,6 +185,11 @@ impl Impacts {
             self.last[i as usize] = 0.0;
         }
         self.touched.clear();
+        for &i in &self.asked {
+            self.stacked[i as usize] = 0;
+        }
+        self.asked.clear();
+        self.stacked.resize(slots, 0);
         self.queue.clear();
         self.listed = false;
         self.shift.resize(slots, DVec3::ZERO);
@@ -218,6 +226,9 @@ impl World {
             wall_restitution: self.config.room.restitution,
             wall_friction: self.config.room.friction,
         };
+        if !impacts.due.is_empty() {
+            impacts.list_neighbours(&self.contacts.pair_slots, &self.scratch.ball_partners);
+        }
         for k in 0..impacts.due.len() {
             let Pair { i, j, .. } = impacts.due[k];
             self.queue_pair(&mut impacts, &setting, i as usize, j as usize, 0.0);
@@ -268,7 +279,7 @@ impl World {
                 }
             }
         }
-        if !impacts.touched.is_empty() {
+        if !impacts.touched.is_empty() || !impacts.due.is_empty() {
             self.hand_impacts_to_contacts(&impacts, &setting);
         }
         self.scratch.impacts = impacts;
@@ -280,6 +291,43 @@ impl World {
         self.balls.position[i] + impacts.shift[i] + self.balls.velocity[i] * t
     }
 
+    /// Whether slot `i` rests, or is about to rest, on another ball: one of
+    /// its contacts lies below it (within 60 degrees of straight down),
+    /// within one of its radii, and neither closes on it nor leaves it faster
+    /// than an impact bounces (so in a scene where every impact bounces,
+    /// nothing rests on anything). Such a ball is part of a heap, and a blow
+    /// on it is the heap's: the contact solver takes it with the heap as one
+    /// body. Followed ball by ball, a blow into a heap (or a heap's landing)
+    /// sets balls bouncing against neighbours the solver then cannot hold
+    /// apart within the step, and costs far more than it shows. Without
+    /// gravity nothing rests on anything.
+    fn stacked(&self, impacts: &mut Impacts, i: usize) -> bool {
+        match impacts.stacked[i] {
+            1 => return false,
+            2 => return true,
+            _ => {}
+        }
+        if !impacts.listed {
+            impacts.list_neighbours(&self.contacts.pair_slots, &self.scratch.ball_partners);
+        }
+
+        let balls = &self.balls;
+        let (first, last) = (impacts.first[i] as usize, impacts.first[i + 1] as usize);
+        let stacked = self.config.gravity > 0.0
+            && impacts.neighbours[first..last].iter().any(|&j| {
+                let d = balls.position[i] - balls.position[j as usize];
+                let close = d.length() <= 2.0 * balls.radius[i] + balls.radius[j as usize];
+                let settling = (balls.velocity[i] - balls.velocity[j as usize])
+                    .dot(d)
+                    .abs()
+                    <= self.config.solver.bounce_threshold * d.length();
+                close && d.y >= 0.5 * d.length() && settling
+            });
+        impacts.stacked[i] = if stacked { 2 } else { 1 };
+        impacts.asked.push(i as u32);
+        stacked
+    }
+
     /// Queues the impact of slots `i` and `j` if they touch, closing fast
     /// enough to bounce, between time `from` and the step's end.
     fn queue_pair(&self, impacts: &mut Impacts, setting: &Setting, i: usize, j: usize, from: f64) {
@@ -287,7 +335,9 @@ impl World {
         let d = self.path_at(impacts, a, from) - self.path_at(impacts, b, from);
         let v = self.balls.velocity[a] - self.balls.velocity[b];
         let reach = self.balls.radius[a] + self.balls.radius[b];
-        if self.scratch.ball_partners[a] > PACKED || self.scratch.ball_partners[b] > PACKED {
+        let partners = &self.scratch.ball_partners;
+        let mut in_heap = |k| packed(partners, k) || self.stacked(impacts, k);
+        if in_heap(a) || in_heap(b) {
             return;
         }
         let Some(t) = first_touch(d, v, reach, setting.dt - from) else {
@@ -314,6 +364,9 @@ impl World {
         s: Surface,
         from: f64,
     ) {
+        if packed(&self.scratch.ball_partners, i) {
+            return;
+        }
         let n = s.inward_normal();
         let (dt, g) = (setting.dt, setting.gravity);
         let at = self.path_at(impacts, i, from) + 0.5 * g * (from * from - from * dt);
@@ -458,15 +511,21 @@ impl World {
     /// impact again).
     fn hand_impacts_to_contacts(&mut self, impacts: &Impacts, setting: &Setting) {
         let balls = &self.balls;
+        let partners = &self.scratch.ball_partners;
+        let threshold = setting.threshold;
         let dt = setting.dt;
+        let due = |p: &Pair| p.approach < -threshold && p.gap + p.approach * dt <= 0.0;
         self.contacts.update_pairs(|p| {
             let (i, j) = (p.i as usize, p.j as usize);
-            if !impacts.met(i) && !impacts.met(j) {
+            let free = !packed(partners, i) && !packed(partners, j);
+            if !(impacts.met(i) || impacts.met(j) || free && due(p)) {
                 return;
             }
             // Both move in straight lines from the later of their last
             // impacts: the contact's normal is found from there on, and its
-            // gap is along it from where their paths now start.
+            // gap is along it from where their paths now start. Free balls
+            // that only pass by are held apart where they come closest.
+            let pass_by = if free { threshold } else { f64::INFINITY };
             let from = impacts.last[i].max(impacts.last[j]);
             let v = balls.velocity[i] - balls.velocity[j];
             let start =
@@ -474,7 +533,7 @@ impl World {
             let d = start + v * from;
             let reach = balls.radius[i] + balls.radius[j];
             if let Some(n) = d.try_normalize() {
-                p.normal = contact_normal(d, v, reach, dt - from).map_or(n, |(n, _)| n);
+                p.normal = contact_normal(d, v, reach, dt - from, pass_by).map_or(n, |(n, _)| n);
                 p.gap = start.dot(p.normal) - reach;
             }
             p.approach = v.dot(p.normal);
@@ -491,6 +550,11 @@ impl World {
             }
         }
     }
+}
+
+/// Whether slot `i` lies packed in a crowd (see [`PACKED`]).
+fn packed(partners: &[u8], i: usize) -> bool {
+    partners[i] > PACKED
 }
 
 /// Counts an impact of slot `i` at time `t`.
