@@ -210,13 +210,12 @@ struct Setting {
 
 impl World {
     /// Resolves the step's impacts in the order they happen (see the module
-    /// above), on the step-average velocities. Collects nothing when
-    /// nothing collides.
+    /// above), on the step-average velocities.
     pub(super) fn resolve_impacts(&mut self, dt: f64, gravity: DVec3) {
         let mut impacts = std::mem::take(&mut self.scratch.impacts);
         impacts.clear(self.balls.len());
         let threshold = self.config.solver.bounce_threshold.max(RESTING_SPEED);
-        let due = |p: &Pair| p.approach < -threshold && p.gap + p.approach * dt <= 0.0;
+        let due = |p: &Pair| closes_fast(p, threshold, dt);
         self.contacts.copy_pairs_where(due, &mut impacts.due);
         let setting = Setting {
             dt,
@@ -241,10 +240,6 @@ impl World {
             if self.scratch.ball_partners[c.ball as usize] > 0 && reaches && fast {
                 self.queue_wall(&mut impacts, &setting, c.ball as usize, c.surface, 0.0);
             }
-        }
-        if impacts.queue.is_empty() {
-            self.scratch.impacts = impacts;
-            return;
         }
         while let Some(c) = impacts.queue.pop() {
             let i = c.ball as usize;
@@ -514,7 +509,7 @@ impl World {
         let partners = &self.scratch.ball_partners;
         let threshold = setting.threshold;
         let dt = setting.dt;
-        let due = |p: &Pair| p.approach < -threshold && p.gap + p.approach * dt <= 0.0;
+        let due = |p: &Pair| closes_fast(p, threshold, dt);
         self.contacts.update_pairs(|p| {
             let (i, j) = (p.i as usize, p.j as usize);
             let free = !packed(partners, i) && !packed(partners, j);
@@ -550,6 +545,12 @@ impl World {
             }
         }
     }
+}
+
+/// Whether pair `p`'s contact, as found, closes within the step faster
+/// than an impact bounces: an impact due, or balls passing close by.
+fn closes_fast(p: &Pair, threshold: f64, dt: f64) -> bool {
+    p.approach < -threshold && p.gap + p.approach * dt <= 0.0
 }
 
 /// Whether slot `i` lies packed in a crowd (see [`PACKED`]).
