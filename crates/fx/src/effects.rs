@@ -32,6 +32,17 @@ pub struct BallHit {
     debt: f32,
 }
 
+/// The flash of the fireball's latest hit: where, and how strong now (1 at
+/// the hit, fading to 0 over [`FLASH_SECONDS`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Flash {
+    pub position: Vec3,
+    pub strength: f32,
+}
+
+/// How long the flash of a hit lasts.
+pub const FLASH_SECONDS: f32 = 0.3;
+
 /// Counts for a HUD.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EffectsStats {
@@ -271,6 +282,21 @@ impl Effects {
                 h.ball_color,
             )
         })
+    }
+
+    /// The flash of the youngest hit, while it lasts: it fades as the
+    /// square of the time left, quickly at first like a spark.
+    pub fn flash(&self) -> Option<Flash> {
+        let walls = self.wall_hits.iter().map(|h| (h.centre, h.age));
+        let balls = self.ball_hits.iter().map(|h| (h.centre, h.age));
+        walls
+            .chain(balls)
+            .filter(|&(_, age)| age < FLASH_SECONDS)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(position, age)| Flash {
+                position,
+                strength: (1.0 - age / FLASH_SECONDS).powi(2),
+            })
     }
 
     /// Seconds of effects time so far.

@@ -12,7 +12,7 @@ mod particle;
 mod ring;
 
 pub use config::{BallHitConfig, EffectsConfig, TrailConfig, WallHitConfig};
-pub use effects::{BallHit, Effects, EffectsStats, WallHit};
-pub use look::{Core, FireballLook, Shell};
+pub use effects::{BallHit, Effects, EffectsStats, FLASH_SECONDS, Flash, WallHit};
+pub use look::{CORE_COLOR, Core, FireballLook, HEART_COLOR, SHELL_COLORS, Shell};
 pub use particle::{Particle, ParticleKind, WALL_HIT_PEAK};
 pub use ring::{Full, ParticleRing};

@@ -16,9 +16,26 @@ pub struct Shell {
     pub alpha: f32,
 }
 
+/// Linear HDR colour of the white-hot heart at the fireball's centre: far
+/// brighter than white, so it glows through the bloom from across the room.
+pub const HEART_COLOR: Vec3 = Vec3::new(16.0, 8.0, 2.0);
+/// The heart's radius, as a share of the fireball's.
+const HEART_SHARE: f32 = 0.5;
+
+/// Linear HDR colour of the crystal cores (brighter than 1: they glow).
+pub const CORE_COLOR: Vec3 = Vec3::new(4.0, 2.8, 1.2);
+/// Linear HDR colours of the inner and the outer shell.
+pub const SHELL_COLORS: [Vec3; 2] = [Vec3::new(3.0, 1.2, 0.15), Vec3::new(2.4, 0.36, 0.72)];
+/// How brightly the fireball lights the room for each unit of its shells'
+/// glow (colour times alpha): about as bright as the ceiling light at a
+/// metre, so that it lights the floor it flies over.
+const LIGHT_PER_GLOW: f32 = 1.5;
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FireballLook {
     pub centre: Vec3,
+    /// Radius of the glowing heart.
+    pub heart_radius: f32,
     pub cores: [Core; 8],
     pub shells: [Shell; 2],
 }
@@ -59,9 +76,21 @@ impl FireballLook {
         ];
         FireballLook {
             centre,
+            heart_radius: HEART_SHARE * radius,
             cores,
             shells,
         }
+    }
+
+    /// The light the fireball casts from its centre, linear colour times
+    /// intensity: its shells' colours, as strongly as they glow now.
+    pub fn light(&self) -> Vec3 {
+        self.shells
+            .iter()
+            .zip(SHELL_COLORS)
+            .map(|(shell, color)| color * shell.alpha)
+            .sum::<Vec3>()
+            * LIGHT_PER_GLOW
     }
 }
 

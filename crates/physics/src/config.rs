@@ -279,7 +279,7 @@ impl Default for WorldConfig {
                 radius: 0.2,
                 speed: 6.0,
                 spawn: DVec3::new(0.0, 1.5, 3.5),
-                direction: DVec3::new(0.3, -0.1, -1.0),
+                direction: DVec3::new(0.1, -0.1, -1.0),
                 consumes_balls: true,
                 starts_active: false,
             },

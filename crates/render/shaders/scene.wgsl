@@ -2,10 +2,13 @@
 // the depth-only shadow faces.
 //
 // Lighting is Blinn-Phong (ambient + diffuse + specular with the half
-// vector). The point light's shadows come from six depth faces (a cube
-// drawn as a 2D array, one layer per face). A fragment looks its distance up
-// through the same view-projection the face was drawn with, so the face
-// conventions of a cube sampler never come into it.
+// vector) from two point lights: the ceiling light, and the fireball's
+// glow while there is one. The ceiling light's shadows come from six depth
+// faces (a cube drawn as a 2D array, one layer per face). A fragment looks
+// its distance up through the same view-projection the face was drawn
+// with, so the face conventions of a cube sampler never come into it.
+// On top, one bounce of diffuse light from the room's six surfaces (see
+// `indirect_light`).
 
 struct Globals {
     view_proj: mat4x4<f32>,
@@ -18,6 +21,20 @@ struct Globals {
     // z: depth bias; w: unused.
     shadow: vec4<f32>,
     light_view_proj: array<mat4x4<f32>, 6>,
+    // The light falls off as 1 / (x + y d + z d^2) at distance d; w: unused.
+    light_falloff: vec4<f32>,
+    // xyz: the fireball's light; w: 1 while it shines, else 0.
+    fireball_pos: vec4<f32>,
+    // rgb: the fireball light's colour times intensity; w: unused.
+    fireball_color: vec4<f32>,
+    // As light_falloff, for the fireball.
+    fireball_falloff: vec4<f32>,
+    // xyz: half the room's width, its height, half its depth;
+    // w: indirect light on (1) or off (0).
+    room: vec4<f32>,
+    // rgb: the light each surface sends back into the room (floor, ceiling,
+    // left, right, back, front), scaled to the ambient strength; w: unused.
+    wall_light: array<vec4<f32>, 6>,
 };
 
 @group(0) @binding(0) var<uniform> globals: Globals;
@@ -162,8 +179,20 @@ fn light_visibility(world: vec3<f32>, normal: vec3<f32>) -> f32 {
 
 // --- passes ----------------------------------------------------------------
 
+// What the opaque passes write: the lit colour, and for the contact
+// occlusion (occlusion.wgsl) the surface's normal and its distance from the
+// eye.
+struct SceneFragment {
+    @location(0) color: vec4<f32>,
+    @location(1) geometry: vec4<f32>,
+};
+
+fn geometry_of(world: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
+    return vec4<f32>(n, distance(world, globals.camera_pos.xyz));
+}
+
 @fragment
-fn fs_lit(in: VertexOut) -> @location(0) vec4<f32> {
+fn fs_lit(in: VertexOut) -> SceneFragment {
     let kind = in.material.x;
     var base = in.color.rgb;
     if kind == KIND_WOOD {
@@ -175,24 +204,116 @@ fn fs_lit(in: VertexOut) -> @location(0) vec4<f32> {
     } else if kind == KIND_PLAIN {
         base = plaster(base, in.world);
     }
-    return vec4<f32>(blinn_phong(base, in.world, normalize(in.normal), in.material), 1.0);
+    let n = normalize(in.normal);
+    return SceneFragment(vec4<f32>(blinn_phong(base, in.world, n, in.material), 1.0), geometry_of(in.world, n));
 }
 
-// Ambient, and where the light reaches, diffuse and specular.
-fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f32>) -> vec3<f32> {
-    let to_light = globals.light_pos.xyz - world;
+// Diffuse and specular light from a point light at `position` of `color`
+// that falls off as `falloff` says.
+fn point_light(position: vec3<f32>, color: vec3<f32>, falloff: vec4<f32>, base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>, material: vec4<f32>) -> vec3<f32> {
+    let to_light = position - world;
     let distance = length(to_light);
     let l = to_light / distance;
-    let v = normalize(globals.camera_pos.xyz - world);
     let h = normalize(l + v);
-    let attenuation = 1.0 / (1.0 + 0.05 * distance + 0.04 * distance * distance);
-    let light = globals.light_color.rgb * attenuation;
-
-    let ambient = globals.light_color.w * base;
+    let light = color / (falloff.x + falloff.y * distance + falloff.z * distance * distance);
     let diffuse = base * max(dot(n, l), 0.0) * light;
     let specular = material.y * pow(max(dot(n, h), 0.0), material.z) * light * step(0.0, dot(n, l));
+    return diffuse + specular;
+}
+
+// Ambient; where the ceiling light reaches, its diffuse and specular; the
+// fireball's light; and the light the room's surfaces send back.
+fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f32>) -> vec3<f32> {
+    let v = normalize(globals.camera_pos.xyz - world);
     let visible = light_visibility(world, n);
-    return ambient + visible * (diffuse + specular);
+    var color = visible * point_light(globals.light_pos.xyz, globals.light_color.rgb, globals.light_falloff, base, world, n, v, material);
+    if globals.fireball_pos.w > 0.5 {
+        color += point_light(globals.fireball_pos.xyz, globals.fireball_color.rgb, globals.fireball_falloff, base, world, n, v, material);
+    }
+    // The light the room bounces back: as much as the ambient strength says,
+    // either the same everywhere or, worked out, from each surface in its
+    // colour (`wall_light` is scaled to the same mean; see lighting.rs).
+    if globals.room.w > 0.5 {
+        color += base * indirect_light(world, n);
+    } else {
+        color += base * globals.light_color.w;
+    }
+    return color;
+}
+
+// --- one bounce of light from the room's surfaces ----------------------------
+//
+// Each of the six surfaces is a large, evenly lit panel: it sends back the
+// light that falls on it on average, in its own colour (`wall_light`,
+// worked out on the CPU each frame from both lights; see indirect.rs). A
+// point receives from each panel that light times the panel's form factor
+// seen from the point: the share of the point's cosine-weighted hemisphere
+// the panel covers. For a polygon that is exact and closed-form (Lambert):
+// the sum over its edges of the angle each edge subtends, weighted by how
+// the plane through the point and the edge faces the normal. The panel is
+// first clipped to the half-space in front of the point, so a wall partly
+// behind a ball counts only for the part the ball faces.
+
+const TAU: f32 = 6.283185307;
+
+// Corner `k` (0..4, in order around it) of surface `wall`.
+fn wall_corner(wall: i32, k: i32) -> vec3<f32> {
+    let r = globals.room.xyz;
+    // The corner's two signs around the surface.
+    let a = select(-1.0, 1.0, k == 1 || k == 2);
+    let b = select(-1.0, 1.0, k >= 2);
+    switch wall {
+        case 0: { return vec3<f32>(a * r.x, 0.0, b * r.z); }
+        case 1: { return vec3<f32>(a * r.x, r.y, b * r.z); }
+        case 2: { return vec3<f32>(-r.x, (a * 0.5 + 0.5) * r.y, b * r.z); }
+        case 3: { return vec3<f32>(r.x, (a * 0.5 + 0.5) * r.y, b * r.z); }
+        case 4: { return vec3<f32>(a * r.x, (b * 0.5 + 0.5) * r.y, -r.z); }
+        default: { return vec3<f32>(a * r.x, (b * 0.5 + 0.5) * r.y, r.z); }
+    }
+}
+
+// The form factor from the point `p` with normal `n` to surface `wall`.
+fn form_factor(p: vec3<f32>, n: vec3<f32>, wall: i32) -> f32 {
+    // Clip the panel, as seen from p, to the half-space n . x >= 0.
+    var polygon: array<vec3<f32>, 5>;
+    var count = 0;
+    for (var k = 0; k < 4; k++) {
+        let a = wall_corner(wall, k) - p;
+        let b = wall_corner(wall, (k + 1) % 4) - p;
+        let ha = dot(a, n);
+        let hb = dot(b, n);
+        if ha >= 0.0 {
+            polygon[count] = a;
+            count++;
+        }
+        if (ha >= 0.0) != (hb >= 0.0) {
+            polygon[count] = mix(a, b, ha / (ha - hb));
+            count++;
+        }
+    }
+    var sum = 0.0;
+    for (var k = 0; k < count; k++) {
+        let a = normalize(polygon[k]);
+        let b = normalize(polygon[(k + 1) % count]);
+        let c = cross(a, b);
+        let s = length(c);
+        if s > 1e-6 {
+            sum += atan2(s, dot(a, b)) * dot(n, c) / s;
+        }
+    }
+    // The corners run one way round or the other as seen from p.
+    return abs(sum) / TAU;
+}
+
+// Light arriving at `world` (normal `n`) from the six surfaces.
+fn indirect_light(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    // A hair off the surface, so that its own panel is never under it.
+    let p = world + n * 0.002;
+    var light = vec3<f32>(0.0);
+    for (var wall = 0; wall < 6; wall++) {
+        light += globals.wall_light[wall].rgb * form_factor(p, n, wall);
+    }
+    return light;
 }
 
 // --- balls: spheres traced on a square ---------------------------------------
@@ -310,6 +431,7 @@ override ALPHA_TO_COVERAGE: bool = true;
 
 struct BallFragment {
     @location(0) color: vec4<f32>,
+    @location(1) geometry: vec4<f32>,
     @builtin(frag_depth) depth: f32,
 };
 
@@ -326,21 +448,23 @@ fn fs_ball(in: BallOut) -> BallFragment {
     var out: BallFragment;
     let material = vec4<f32>(BALL_KIND, BALL_SPECULAR, BALL_SHININESS, 0.0);
     out.color = vec4<f32>(blinn_phong(in.color, hit.point, n, material), coverage);
+    out.geometry = geometry_of(hit.point, n);
     out.depth = ball_depth(globals.view_proj, hit.point, in.clip.z);
     return out;
 }
 
 // Unlit and glowing: the light's bulb (and, with it, anything emissive).
 @fragment
-fn fs_emissive(in: VertexOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(in.color.rgb * in.material.w, 1.0);
+fn fs_emissive(in: VertexOut) -> SceneFragment {
+    return SceneFragment(vec4<f32>(in.color.rgb * in.material.w, 1.0), geometry_of(in.world, normalize(in.normal)));
 }
 
 // Glowing and see-through, unlit, in premultiplied alpha: rgb is the light
 // added, a how much of what is behind is covered.
 // Kind 0, a cube: a hole in space (a dark, half-covering inside) framed by a
 // bright edge and a circuit-like grid, as in the report's "space collapse".
-// Kind 1, a shell: pure glow, brightest at its rim.
+// Kind 1, a shell: glow, brightest at its rim, over a veil.
+const SHELL_COVER: f32 = 0.5;
 @fragment
 fn fs_glow(in: VertexOut) -> @location(0) vec4<f32> {
     let alpha = in.color.a;
@@ -358,7 +482,9 @@ fn fs_glow(in: VertexOut) -> @location(0) vec4<f32> {
     let v = normalize(globals.camera_pos.xyz - in.world);
     let facing = abs(dot(normalize(in.normal), v));
     let strength = 0.3 + 1.3 * pow(1.0 - facing, 2.0);
-    return vec4<f32>(in.color.rgb * strength * alpha, 0.0);
+    // Half covering what is behind, so that it shows as fire even against
+    // a bright wall.
+    return vec4<f32>(in.color.rgb * strength * alpha, SHELL_COVER * alpha);
 }
 
 struct ShadowFace {

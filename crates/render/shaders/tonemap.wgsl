@@ -1,13 +1,18 @@
-// From the HDR scene to the screen: exposure, a filmic curve, and the
-// output format's own sRGB encoding.
+// From the HDR scene to the screen: the contact occlusion darkens it, the
+// bloom's glow is added, then exposure, a filmic curve, and the output
+// format's own sRGB encoding.
 
 @group(0) @binding(0) var hdr: texture_2d<f32>;
 
 struct Params {
-    // x: exposure.
+    // x: exposure; y: the glow's strength, divided by the levels it sums
+    // (0: no bloom); z: occlusion on (1) or off (0); w: unused.
     values: vec4<f32>,
 };
 @group(0) @binding(1) var<uniform> params: Params;
+@group(0) @binding(2) var glow: texture_2d<f32>;
+@group(0) @binding(3) var openness: texture_2d<f32>;
+@group(0) @binding(4) var smooth_sampler: sampler;
 
 @vertex
 fn vs_fullscreen(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
@@ -27,8 +32,30 @@ fn aces(x: vec3<f32>) -> vec3<f32> {
     return clamp((x * (a * x + b)) / (x * (c * x + d) + e), vec3<f32>(0.0), vec3<f32>(1.0));
 }
 
+// The occlusion, blurred over about 4 x 4 of its half-resolution texels:
+// four bilinear taps, each the mean of 2 x 2, which smooths away the
+// pattern each pixel turned by its own angle.
+fn open_at(position: vec2<f32>) -> f32 {
+    let size = vec2<f32>(textureDimensions(hdr));
+    let texel = 2.0 / size;
+    let uv = position / size;
+    var sum = 0.0;
+    for (var k = 0; k < 4; k++) {
+        let corner = vec2<f32>(f32(k & 1), f32(k >> 1u)) * 2.0 - 1.0;
+        sum += textureSampleLevel(openness, smooth_sampler, uv + corner * texel, 0.0).r;
+    }
+    return sum * 0.25;
+}
+
 @fragment
 fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let color = textureLoad(hdr, vec2<i32>(position.xy), 0).rgb;
+    var color = textureLoad(hdr, vec2<i32>(position.xy), 0).rgb;
+    if params.values.z > 0.5 {
+        color *= open_at(position.xy);
+    }
+    if params.values.y > 0.0 {
+        let uv = position.xy / vec2<f32>(textureDimensions(hdr));
+        color += params.values.y * textureSampleLevel(glow, smooth_sampler, uv, 0.0).rgb;
+    }
     return vec4<f32>(aces(color * params.values.x), 1.0);
 }

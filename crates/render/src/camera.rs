@@ -2,6 +2,11 @@
 
 use glam::{Mat4, Vec3};
 
+/// The overview's vertical field of view, in degrees.
+const OVERVIEW_FOV_DEG: f32 = 50.0;
+/// How far the overview looks down, in degrees.
+const OVERVIEW_TILT_DEG: f32 = 8.0;
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
     pub eye: Vec3,
@@ -11,14 +16,25 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// A view of the whole room from just inside the front wall, above the
-    /// tumblers' heads: the floor, the three far walls and the light.
+    /// A view of the whole room through its front wall, as a Cornell box
+    /// is shown: from outside the room, where the front wall (drawn only
+    /// from inside) hides nothing, looking slightly down, far enough back
+    /// that the room's full height fills the picture. The field of view is
+    /// narrow enough (50 degrees, about 80 across a 16:9 frame) that balls
+    /// at the frame's edge stay round: a wider one seen from inside the
+    /// room stretches them into eggs.
     pub fn overview(room_size: Vec3) -> Camera {
-        let half = room_size * 0.5;
+        let half_fov = (OVERVIEW_FOV_DEG / 2.0).to_radians();
+        let tilt = OVERVIEW_TILT_DEG.to_radians();
+        // The frame's top and bottom edges pass through the top and the
+        // bottom of the front wall's opening.
+        let (above, below) = ((half_fov - tilt).tan(), (half_fov + tilt).tan());
+        let back = room_size.y / (above + below);
+        let eye = Vec3::new(0.0, below * back, 0.5 * room_size.z + back);
         Camera {
-            eye: Vec3::new(0.0, room_size.y * 0.6, half.z - 0.1),
-            target: Vec3::new(0.0, room_size.y * 0.29, -half.z * 0.25),
-            fov_y_deg: 70.0,
+            eye,
+            target: eye + Vec3::new(0.0, -tilt.tan(), -1.0),
+            fov_y_deg: OVERVIEW_FOV_DEG,
         }
     }
 

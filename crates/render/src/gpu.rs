@@ -2,6 +2,10 @@
 
 use thiserror::Error;
 
+/// The scene is lit in linear HDR and tone-mapped at the end, so that
+/// glowing things can be brighter than white.
+pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
 /// Why rendering could not start or finish.
 #[derive(Debug, Error)]
 pub enum RenderError {
@@ -123,10 +127,7 @@ impl Gpu {
     /// The largest multisample count up to `wanted` that the adapter supports
     /// for the HDR target.
     pub fn msaa_samples(&self, wanted: u32) -> u32 {
-        let flags = self
-            .adapter
-            .get_texture_format_features(crate::renderer::HDR_FORMAT)
-            .flags;
+        let flags = self.adapter.get_texture_format_features(HDR_FORMAT).flags;
         [wanted, 4, 2, 1]
             .into_iter()
             .filter(|&n| n <= wanted)

@@ -139,7 +139,8 @@ impl<T: Pod> InstanceBuffer<T> {
 pub struct Ranges {
     pub room: std::ops::Range<u32>,
     pub tumblers: std::ops::Range<u32>,
-    pub bulb: std::ops::Range<u32>,
+    /// What glows and is not lit: the bulb and the fireball's heart.
+    pub lamps: std::ops::Range<u32>,
     /// Particles and the fireball's cores: glowing cubes.
     pub cubes: std::ops::Range<u32>,
     /// The fireball's shells.
@@ -218,7 +219,22 @@ pub fn fill_scene(list: &mut Vec<Instance>, view: &SceneView) -> Ranges {
     );
     let glow = light.color / light.color.max_element().max(1e-6);
     list.push(Instance::new(model, glow, Kind::Plain, 0.0, 1.0, 12.0));
-    ranges.bulb = start..list.len() as u32;
+    if let Some(look) = &view.fireball {
+        let model = Mat4::from_scale_rotation_translation(
+            Vec3::splat(look.heart_radius),
+            glam::Quat::IDENTITY,
+            look.centre,
+        );
+        list.push(Instance::new(
+            model,
+            rolypoly_fx::HEART_COLOR,
+            Kind::Plain,
+            0.0,
+            1.0,
+            1.0,
+        ));
+    }
+    ranges.lamps = start..list.len() as u32;
 
     let start = list.len() as u32;
     for p in &view.particles {
@@ -233,23 +249,14 @@ pub fn fill_scene(list: &mut Vec<Instance>, view: &SceneView) -> Ranges {
                 core.rotation,
                 core.position,
             );
-            list.push(Instance::glow(
-                model,
-                Vec3::new(1.0, 0.7, 0.3) * 2.5,
-                1.0,
-                0.0,
-            ));
+            list.push(Instance::glow(model, rolypoly_fx::CORE_COLOR, 1.0, 0.0));
         }
     }
     ranges.cubes = start..list.len() as u32;
 
     let start = list.len() as u32;
     if let Some(look) = &view.fireball {
-        let colors = [
-            Vec3::new(1.0, 0.4, 0.05) * 1.4,
-            Vec3::new(1.0, 0.15, 0.3) * 1.0,
-        ];
-        for (shell, color) in look.shells.iter().zip(colors) {
+        for (shell, color) in look.shells.iter().zip(rolypoly_fx::SHELL_COLORS) {
             let model = Mat4::from_scale_rotation_translation(
                 Vec3::splat(shell.radius),
                 glam::Quat::IDENTITY,

@@ -10,6 +10,7 @@
 mod camera;
 mod gpu;
 mod instances;
+mod lighting;
 mod mesh;
 mod offscreen;
 mod paint;
@@ -20,13 +21,14 @@ mod tumbler_mesh;
 mod view;
 
 pub use camera::Camera;
-pub use gpu::{Gpu, RenderError};
+pub use gpu::{Gpu, HDR_FORMAT, RenderError};
 pub use mesh::{MeshData, Vertex};
 pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};
 pub use paint::tumbler_paint;
-pub use renderer::{FrameStats, HDR_FORMAT, RenderSettings, Renderer};
+pub use renderer::{FrameStats, RenderSettings, Renderer};
 pub use snapshot::Snapshot;
 pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
 pub use view::{
-    BallView, Light, LightConfig, ParticleView, SceneView, TumblerView, particle_color,
+    BallView, Bloom, CEILING_FALLOFF, Light, LightConfig, ParticleView, PointLight, SceneView,
+    TumblerView, particle_color,
 };

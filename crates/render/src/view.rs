@@ -4,6 +4,7 @@
 
 use glam::{Mat4, Quat, Vec3};
 use rolypoly_fx::{Effects, FireballLook, ParticleKind};
+use rolypoly_fx::{Flash, SHELL_COLORS};
 use rolypoly_physics::World;
 
 /// The point light's constants (a scene file's `[light]`).
@@ -19,6 +20,18 @@ pub struct LightConfig {
     pub bulb_radius: f32,
     /// How far below the ceiling's centre the light hangs (metres).
     pub drop: f32,
+    /// Glow around what is brighter than white.
+    pub bloom: bool,
+    /// How much of the glow is added to the picture.
+    pub bloom_strength: f32,
+    /// How bright (linear, before exposure) a pixel must be to glow.
+    pub bloom_threshold: f32,
+    /// The flying fireball, and the flash of its hits, light the room.
+    pub fireball_light: bool,
+    /// One bounce of diffuse light from the room's six surfaces.
+    pub indirect: bool,
+    /// Darkening where surfaces meet: under a ball, between two balls.
+    pub occlusion: bool,
 }
 
 impl Default for LightConfig {
@@ -29,6 +42,12 @@ impl Default for LightConfig {
             ambient: 0.16,
             bulb_radius: 0.09,
             drop: 0.25,
+            bloom: true,
+            bloom_strength: 1.0,
+            bloom_threshold: 2.0,
+            fireball_light: true,
+            indirect: true,
+            occlusion: true,
         }
     }
 }
@@ -43,9 +62,76 @@ pub struct Light {
     pub ambient: f32,
     /// Radius of the visible bulb.
     pub bulb_radius: f32,
+    /// The glow: its strength and threshold, or none.
+    pub bloom: Option<Bloom>,
+    /// Whether the fireball's light, when there is one, is drawn.
+    pub fireball_light: bool,
+    pub indirect: bool,
+    pub occlusion: bool,
+}
+
+/// Glow around what is brighter than `threshold`, added at `strength`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bloom {
+    pub strength: f32,
+    pub threshold: f32,
+}
+
+/// A point light: the ceiling light, or the fireball's glow and its hits'
+/// flashes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointLight {
+    pub position: Vec3,
+    /// Linear RGB colour times intensity.
+    pub color: Vec3,
+    /// It falls off as `1 / (c0 + c1 d + c2 d^2)` at distance `d`.
+    pub falloff: [f32; 3],
+}
+
+/// The ceiling light's falloff: gentler than the inverse square near the
+/// light, so the floor under it is not burnt white, and like it far away.
+pub const CEILING_FALLOFF: [f32; 3] = [1.0, 0.05, 0.04];
+
+/// The fireball's falloff: its light reaches about 0.6 m at half strength,
+/// so it lights what it passes, not the whole room.
+const FIREBALL_FALLOFF: [f32; 3] = [1.0, 0.0, 2.8];
+
+/// How bright the flash of a hit is at its start, in units of the
+/// fireball's inner shell colour.
+const FLASH_BRIGHTNESS: f32 = 3.0;
+
+impl PointLight {
+    /// The fireball's light: its glow while it flies, and the flash of its
+    /// latest hit, from where the fireball is or, once it is gone, from
+    /// where it hit.
+    pub fn of_fireball(look: Option<&FireballLook>, flash: Option<Flash>) -> Option<PointLight> {
+        let flash_color = |f: Flash| SHELL_COLORS[0] * (FLASH_BRIGHTNESS * f.strength);
+        match (look, flash) {
+            (Some(look), flash) => Some(PointLight {
+                position: look.centre,
+                color: look.light() + flash.map_or(Vec3::ZERO, flash_color),
+                falloff: FIREBALL_FALLOFF,
+            }),
+            (None, Some(f)) => Some(PointLight {
+                position: f.position,
+                color: flash_color(f),
+                falloff: FIREBALL_FALLOFF,
+            }),
+            (None, None) => None,
+        }
+    }
 }
 
 impl Light {
+    /// The ceiling light as a point light.
+    pub fn point(&self) -> PointLight {
+        PointLight {
+            position: self.position,
+            color: self.color,
+            falloff: CEILING_FALLOFF,
+        }
+    }
+
     /// The light of `config`, hanging below the centre of the ceiling of a
     /// room of `room_size`.
     pub fn ceiling_centre(room_size: Vec3, config: &LightConfig) -> Light {
@@ -54,6 +140,13 @@ impl Light {
             color: Vec3::from_array(config.color) * config.intensity,
             ambient: config.ambient,
             bulb_radius: config.bulb_radius,
+            bloom: config.bloom.then_some(Bloom {
+                strength: config.bloom_strength,
+                threshold: config.bloom_threshold,
+            }),
+            fireball_light: config.fireball_light,
+            indirect: config.indirect,
+            occlusion: config.occlusion,
         }
     }
 }
@@ -97,13 +190,14 @@ pub struct ParticleView {
     pub alpha: f32,
 }
 
-/// The glow colour of each kind of particle.
+/// The glow colour of each kind of particle: linear HDR, bright enough
+/// (above the default bloom threshold of 2) to glow.
 pub fn particle_color(kind: ParticleKind) -> Vec3 {
     match kind {
-        ParticleKind::Trail => Vec3::new(1.0, 0.3, 0.04) * 1.3,
-        ParticleKind::WallHit => Vec3::new(0.05, 0.7, 1.0) * 1.3,
-        ParticleKind::Collapse => Vec3::new(0.65, 0.15, 1.0) * 1.3,
-        ParticleKind::Burst => Vec3::new(1.0, 0.5, 1.0) * 2.0,
+        ParticleKind::Trail => Vec3::new(1.0, 0.3, 0.04) * 3.2,
+        ParticleKind::WallHit => Vec3::new(0.05, 0.7, 1.0) * 3.2,
+        ParticleKind::Collapse => Vec3::new(0.65, 0.15, 1.0) * 3.2,
+        ParticleKind::Burst => Vec3::new(1.0, 0.5, 1.0) * 4.0,
     }
 }
 
@@ -117,6 +211,8 @@ pub struct SceneView {
     pub tumblers: Vec<TumblerView>,
     pub particles: Vec<ParticleView>,
     pub fireball: Option<FireballLook>,
+    /// The fireball's light (drawn where `light.fireball_light` says so).
+    pub fireball_light: Option<PointLight>,
 }
 
 impl SceneView {
@@ -147,6 +243,9 @@ impl SceneView {
                     .map_or(Vec3::ONE, |c| Vec3::from_array(*c)),
             })
             .collect();
+        let fireball = world
+            .fireball()
+            .map(|f| FireballLook::at(f.position.as_vec3(), f.radius as f32, world.time()));
         SceneView {
             room_size,
             room_colors: config.room.colors.map(Vec3::from_array),
@@ -154,9 +253,8 @@ impl SceneView {
             balls,
             tumblers,
             particles: Vec::new(),
-            fireball: world
-                .fireball()
-                .map(|f| FireballLook::at(f.position.as_vec3(), f.radius as f32, world.time())),
+            fireball_light: PointLight::of_fireball(fireball.as_ref(), None),
+            fireball,
         }
     }
 
@@ -193,6 +291,7 @@ impl SceneView {
                 effects.time(),
             ));
         }
+        self.fireball_light = PointLight::of_fireball(self.fireball.as_ref(), effects.flash());
         self
     }
 }

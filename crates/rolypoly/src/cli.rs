@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 
 use crate::scene::Overrides;
+use rolypoly_render::LightConfig;
 
 /// Help section of the options shared by every command.
 const SCENE_HEADING: &str = "Scene options";
@@ -65,6 +66,9 @@ pub struct WindowArgs {
     #[arg(long, value_name = "DIR", default_value = ".", help_heading = WINDOW_HEADING)]
     pub screenshot_dir: PathBuf,
 
+    #[command(flatten, next_help_heading = WINDOW_HEADING)]
+    pub effects: LightEffectArgs,
+
     /// Walking speed of W/A/S/D in m/s (0.1 ..= 50).
     #[arg(long, value_name = "M/S", default_value_t = 2.5, value_parser = parse_speed, help_heading = WINDOW_HEADING)]
     pub move_speed: f32,
@@ -96,6 +100,43 @@ fn parse_speed(text: &str) -> Result<f32, String> {
 
 fn parse_look(text: &str) -> Result<f32, String> {
     parse_bounded(text, 0.01, 5.0)
+}
+
+/// Switches that turn the light's effects off, each on unless switched off
+/// here or by the scene file's `[light]`.
+#[derive(Clone, Copy, Debug, Default, Args)]
+pub struct LightEffectArgs {
+    /// Without the glow around the bulb, the fireball and its particles
+    /// (the scene's light.bloom).
+    #[arg(long)]
+    pub no_bloom: bool,
+
+    /// Without the fireball's light on the room and the flash of its hits
+    /// (light.fireball_light).
+    #[arg(long)]
+    pub no_fireball_light: bool,
+
+    /// Without the light bounced off the walls, floor and ceiling
+    /// (light.indirect).
+    #[arg(long)]
+    pub no_indirect: bool,
+
+    /// Without the darkening where things touch (light.occlusion).
+    #[arg(long)]
+    pub no_occlusion: bool,
+}
+
+impl LightEffectArgs {
+    /// The scene's light with the effects switched off here turned off.
+    pub fn apply(&self, light: &LightConfig) -> LightConfig {
+        LightConfig {
+            bloom: light.bloom && !self.no_bloom,
+            fireball_light: light.fireball_light && !self.no_fireball_light,
+            indirect: light.indirect && !self.no_indirect,
+            occlusion: light.occlusion && !self.no_occlusion,
+            ..*light
+        }
+    }
 }
 
 /// Options that choose and adjust the scene; accepted before or after the
@@ -178,6 +219,9 @@ pub struct RenderArgs {
     /// Draw without the point light's shadows.
     #[arg(long)]
     pub no_shadows: bool,
+
+    #[command(flatten)]
+    pub effects: LightEffectArgs,
 
     /// Size of each of the six shadow faces, in texels (16 ..= 4096).
     #[arg(long, value_name = "N", default_value_t = 1024, value_parser = clap::value_parser!(u32).range(16..=4096))]

@@ -53,7 +53,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
                 screenshot_dir: w.screenshot_dir.clone(),
                 move_speed: w.move_speed,
                 look_speed: w.look_speed.to_radians(),
-                light: scene.light,
+                light: w.effects.apply(&scene.light),
             };
             window::run(world, scene.effects, mesh, options)
         }
@@ -63,7 +63,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Render(args)) => render::render(
             &mut world,
             scene.effects,
-            &scene.light,
+            &args.effects.apply(&scene.light),
             scene_args.seed,
             args,
         ),

@@ -12,7 +12,8 @@ pub(super) struct Layouts {
     pub scene: wgpu::BindGroupLayout,
     /// One shadow face: its view-projection and the light.
     pub face: wgpu::BindGroupLayout,
-    /// Tone mapping: the HDR frame and the exposure.
+    /// Tone mapping: the HDR frame, its parameters, the bloom's glow, the
+    /// contact occlusion and a bilinear sampler for those two.
     pub tonemap: wgpu::BindGroupLayout,
 }
 
@@ -74,6 +75,14 @@ impl Layouts {
                     count: None,
                 },
                 uniform_entry(1, wgpu::ShaderStages::FRAGMENT),
+                filterable_texture_entry(2),
+                filterable_texture_entry(3),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 4,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
             ],
         });
         Layouts {
@@ -135,6 +144,20 @@ pub(super) fn scene_bind_group(
             },
         ],
     })
+}
+
+/// A 2D colour texture at `binding` that fragments sample smoothly.
+fn filterable_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
 }
 
 /// A uniform buffer at `binding`, seen by the `visibility` stages.

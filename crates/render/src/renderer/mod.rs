@@ -1,36 +1,65 @@
-//! The frame: shadow faces, the lit opaque scene, the unlit bulb, then tone
-//! mapping to the output (R4's order), with MSAA and an HDR target.
+//! The frame, pass by pass (R4's order, and the light's effects):
 //!
-//! This file records a frame's passes. The parts, a file each: what the
-//! shaders read ([`bindings`]), how each kind of thing is drawn
-//! ([`pipelines`]), the targets a frame is drawn into ([`targets`]) and the
-//! drawn cursor ([`cursor`]).
+//! 1. [`Renderer::shadow_pass`]: the ceiling light's six shadow faces;
+//! 2. [`Renderer::scene_pass`]: the lit, opaque scene and the unlit lamps in
+//!    linear HDR with MSAA, then the see-through particles;
+//! 3. the contact occlusion, from the surfaces the scene pass saw
+//!    ([`occlusion`]);
+//! 4. the bloom's chain down and up ([`bloom`]);
+//! 5. [`Renderer::tonemap_pass`]: occlusion, glow and the filmic curve into
+//!    the output, and the drawn cursor over it.
+//!
+//! The parts, a file each: what the shaders read ([`bindings`]), how each
+//! kind of thing is drawn ([`pipelines`]), the targets a frame is drawn
+//! into ([`targets`]), the two post passes and the cursor ([`cursor`]).
 
 use crate::camera::Camera;
 use crate::gpu::{Gpu, RenderError};
-use crate::instances::{self, BallInstance, Instance, InstanceBuffer};
+use crate::instances::{self, BallInstance, Instance, InstanceBuffer, Ranges};
+use crate::lighting;
 use crate::mesh::{GpuMesh, MeshData};
 use crate::shadow::{self, ShadowCube};
-use crate::view::SceneView;
+use crate::view::{PointLight, SceneView};
 use bindings::Layouts;
+use bloom::BloomPipelines;
 use bytemuck::{Pod, Zeroable};
 use cursor::Cursor;
+use occlusion::OcclusionPipeline;
 use pipelines::Pipelines;
 use std::time::{Duration, Instant};
-use targets::Targets;
+use targets::{TargetKit, Targets};
 use wgpu::util::DeviceExt;
 
 mod bindings;
+mod bloom;
 mod cursor;
+mod occlusion;
 mod pipelines;
 mod targets;
 
-/// The scene is lit in linear HDR and tone-mapped at the end, so that
-/// glowing things can be brighter than white.
-pub const HDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+pub use crate::gpu::HDR_FORMAT;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The surface's normal (xyz) and distance from the eye (w), written by the
+/// scene pass for the occlusion: read from a colour target, which every
+/// backend can, where OpenGL cannot read a depth buffer in a shader.
+const GEOMETRY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
-/// How to draw.
+/// What shows where nothing is drawn (never, inside the room).
+const BACKGROUND: wgpu::Color = wgpu::Color {
+    r: 0.01,
+    g: 0.01,
+    b: 0.012,
+    a: 1.0,
+};
+
+/// Taken from a fragment's depth as seen from the light before it is
+/// compared with a shadow face's, against shadow acne where the normal
+/// offset (see `light_visibility` in scene.wgsl) is not enough.
+const SHADOW_DEPTH_BIAS: f32 = 0.00002;
+
+/// How the picture is drawn: what the adapter is asked for, fixed for the
+/// renderer's life. What is lit and how (the light's effects) comes with
+/// each frame's [`SceneView`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
     /// Multisample count: 4 or 1 (lowered if the adapter cannot).
@@ -65,6 +94,8 @@ pub struct FrameStats {
     pub cpu_time: Duration,
 }
 
+/// The scene shader's `Globals`: the camera, both lights, the shadows and
+/// the room's light for the bounce.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 struct Globals {
@@ -74,13 +105,31 @@ struct Globals {
     light_color: [f32; 4],
     shadow: [f32; 4],
     light_view_proj: [[[f32; 4]; 4]; 6],
+    light_falloff: [f32; 4],
+    fireball_pos: [f32; 4],
+    fireball_color: [f32; 4],
+    fireball_falloff: [f32; 4],
+    room: [f32; 4],
+    wall_light: [[f32; 4]; 6],
+}
+
+fn falloff(light: PointLight) -> [f32; 4] {
+    let [c0, c1, c2] = light.falloff;
+    [c0, c1, c2, 0.0]
+}
+
+fn flag(on: bool) -> f32 {
+    if on { 1.0 } else { 0.0 }
 }
 
 pub struct Renderer {
     settings: RenderSettings,
     output_format: wgpu::TextureFormat,
     pipelines: Pipelines,
+    bloom: BloomPipelines,
+    occlusion: OcclusionPipeline,
     tonemap_layout: wgpu::BindGroupLayout,
+    smooth_sampler: wgpu::Sampler,
     cursor: Cursor,
     globals: wgpu::Buffer,
     tonemap_params: wgpu::Buffer,
@@ -130,7 +179,17 @@ impl Renderer {
             settings,
             output_format,
             pipelines: Pipelines::new(device, &layouts, &settings, output_format),
+            bloom: BloomPipelines::new(device),
+            occlusion: OcclusionPipeline::new(device),
             tonemap_layout: layouts.tonemap,
+            smooth_sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("smooth"),
+                address_mode_u: wgpu::AddressMode::ClampToEdge,
+                address_mode_v: wgpu::AddressMode::ClampToEdge,
+                mag_filter: wgpu::FilterMode::Linear,
+                min_filter: wgpu::FilterMode::Linear,
+                ..Default::default()
+            }),
             cursor: Cursor::new(device, output_format),
             globals,
             tonemap_params,
@@ -183,25 +242,10 @@ impl Renderer {
         self.instances.upload(gpu);
         instances::fill_balls(&mut self.balls.items, view);
         self.balls.upload(gpu);
-
         let faces = shadow::face_view_projections(view.light.position);
         self.shadow_cube
             .update(&gpu.queue, &faces, view.light.position);
-        let globals = Globals {
-            view_proj: camera
-                .view_projection(width as f32 / height as f32)
-                .to_cols_array_2d(),
-            camera_pos: camera.eye.extend(1.0).to_array(),
-            light_pos: view.light.position.extend(1.0).to_array(),
-            light_color: view.light.color.extend(view.light.ambient).to_array(),
-            shadow: [
-                if self.settings.shadows { 1.0 } else { 0.0 },
-                1.0 / self.shadow_cube.size as f32,
-                0.00002,
-                0.0,
-            ],
-            light_view_proj: faces.map(|m| m.to_cols_array_2d()),
-        };
+        let globals = self.globals(view, camera, width as f32 / height as f32);
         gpu.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
 
@@ -212,62 +256,90 @@ impl Renderer {
             });
         let mut draw_calls = 0;
         if self.settings.shadows {
-            for face in 0..6 {
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("shadow face"),
-                    color_attachments: &[],
-                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                        view: &self.shadow_cube.face_views[face],
-                        depth_ops: Some(wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(1.0),
-                            store: wgpu::StoreOp::Store,
-                        }),
-                        stencil_ops: None,
-                    }),
-                    timestamp_writes: None,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_bind_group(0, &self.shadow_cube.face_bind_groups[face], &[]);
-                // The room's walls cast no shadow inside it; balls and tumblers do.
-                pass.set_vertex_buffer(1, self.balls.buffer.slice(..));
-                pass.set_pipeline(&self.pipelines.ball_shadow);
-                draw_calls += draw(&mut pass, &self.quad, self.balls.range());
-                pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
-                pass.set_pipeline(&self.pipelines.shadow);
-                draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
-            }
+            draw_calls += self.shadow_pass(&mut encoder, &ranges);
         }
         let targets = self
             .targets
             .as_ref()
             .ok_or_else(|| RenderError::Readback("no render targets".into()))?;
-        {
-            let (view_target, resolve) = match &targets.msaa {
-                Some(msaa) => (msaa, Some(&targets.hdr)),
-                None => (&targets.hdr, None),
-            };
+        draw_calls += self.scene_pass(&mut encoder, targets, &ranges);
+        if view.light.occlusion {
+            draw_calls +=
+                self.occlusion
+                    .record(&gpu.queue, &mut encoder, &targets.occlusion, camera);
+        }
+        if let Some(bloom) = &view.light.bloom {
+            draw_calls += targets
+                .bloom
+                .record(&gpu.queue, &mut encoder, &self.bloom, bloom);
+        }
+        let glow = view
+            .light
+            .bloom
+            .map_or(0.0, |b| b.strength / targets.bloom.levels as f32);
+        let params = [
+            self.settings.exposure,
+            glow,
+            flag(view.light.occlusion),
+            0.0,
+        ];
+        gpu.queue
+            .write_buffer(&self.tonemap_params, 0, bytemuck::cast_slice(&params));
+        draw_calls += self.tonemap_pass(&gpu.queue, &mut encoder, targets, output);
+        let cpu_time = start.elapsed();
+        gpu.queue.submit([encoder.finish()]);
+        Ok(FrameStats {
+            draw_calls,
+            cpu_time,
+        })
+    }
+
+    /// The scene shader's globals for `view` seen by `camera`.
+    fn globals(&self, view: &SceneView, camera: &Camera, aspect: f32) -> Globals {
+        let light = &view.light;
+        let ceiling = light.point();
+        let fireball = view.fireball_light.filter(|_| light.fireball_light);
+        let wall_light = if light.indirect {
+            lighting::bounce(view, ceiling, fireball)
+        } else {
+            [glam::Vec3::ZERO; 6]
+        };
+        let half = view.room_size * glam::Vec3::new(0.5, 1.0, 0.5);
+        Globals {
+            view_proj: camera.view_projection(aspect).to_cols_array_2d(),
+            camera_pos: camera.eye.extend(1.0).to_array(),
+            light_pos: light.position.extend(1.0).to_array(),
+            light_color: light.color.extend(light.ambient).to_array(),
+            shadow: [
+                flag(self.settings.shadows),
+                1.0 / self.shadow_cube.size as f32,
+                SHADOW_DEPTH_BIAS,
+                0.0,
+            ],
+            light_view_proj: shadow::face_view_projections(light.position)
+                .map(|m| m.to_cols_array_2d()),
+            light_falloff: falloff(ceiling),
+            fireball_pos: fireball.map_or([0.0; 4], |f| f.position.extend(1.0).to_array()),
+            fireball_color: fireball.map_or([0.0; 4], |f| f.color.extend(0.0).to_array()),
+            fireball_falloff: fireball.map_or([1.0, 0.0, 0.0, 0.0], falloff),
+            room: half.extend(flag(light.indirect)).to_array(),
+            wall_light: wall_light.map(|w| w.extend(0.0).to_array()),
+        }
+    }
+
+    /// The ceiling light's six shadow faces: the balls and the tumblers
+    /// (the room's walls cast no shadow inside it).
+    fn shadow_pass(&self, encoder: &mut wgpu::CommandEncoder, ranges: &Ranges) -> u32 {
+        let mut draw_calls = 0;
+        for face in 0..6 {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("scene"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: view_target,
-                    depth_slice: None,
-                    resolve_target: resolve,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color {
-                            r: 0.01,
-                            g: 0.01,
-                            b: 0.012,
-                            a: 1.0,
-                        }),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
+                label: Some("shadow face"),
+                color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth,
+                    view: &self.shadow_cube.face_views[face],
                     depth_ops: Some(wgpu::Operations {
                         load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Discard,
+                        store: wgpu::StoreOp::Store,
                     }),
                     stencil_ops: None,
                 }),
@@ -275,53 +347,104 @@ impl Renderer {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_bind_group(0, &self.scene_bind_group, &[]);
-            // Lit and opaque first (the balls from their own buffer) ...
-            pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
-            pass.set_pipeline(&self.pipelines.lit);
-            draw_calls += draw(&mut pass, &self.quad, ranges.room.clone());
-            draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
+            pass.set_bind_group(0, &self.shadow_cube.face_bind_groups[face], &[]);
             pass.set_vertex_buffer(1, self.balls.buffer.slice(..));
-            pass.set_pipeline(&self.pipelines.ball);
+            pass.set_pipeline(&self.pipelines.ball_shadow);
             draw_calls += draw(&mut pass, &self.quad, self.balls.range());
             pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
-            // ... then what glows and is not lit.
-            pass.set_pipeline(&self.pipelines.emissive);
-            draw_calls += draw(&mut pass, &self.sphere, ranges.bulb.clone());
-            // ... and last what is see-through.
-            pass.set_pipeline(&self.pipelines.glow);
-            draw_calls += draw(&mut pass, &self.cube, ranges.cubes.clone());
-            draw_calls += draw(&mut pass, &self.sphere, ranges.shells.clone());
+            pass.set_pipeline(&self.pipelines.shadow);
+            draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
         }
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("tonemap"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: output,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            pass.set_pipeline(&self.pipelines.tonemap);
-            pass.set_bind_group(0, &targets.tonemap_bind_group, &[]);
-            pass.draw(0..3, 0..1);
-            draw_calls += 1;
-            draw_calls += self.cursor.draw(&gpu.queue, &mut pass, width, height);
-        }
-        let cpu_time = start.elapsed();
-        gpu.queue.submit([encoder.finish()]);
-        Ok(FrameStats {
-            draw_calls,
-            cpu_time,
-        })
+        draw_calls
+    }
+
+    /// The lit scene into the HDR target, and the surfaces' normals and
+    /// distances for the occlusion, resolved there from their samples.
+    fn scene_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &Targets,
+        ranges: &Ranges,
+    ) -> u32 {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("scene"),
+            color_attachments: &[
+                attachment(&targets.hdr, targets.msaa.as_ref(), BACKGROUND),
+                // Distance 0: nothing there.
+                attachment(
+                    &targets.geometry,
+                    targets.geometry_msaa.as_ref(),
+                    wgpu::Color::TRANSPARENT,
+                ),
+            ],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_bind_group(0, &self.scene_bind_group, &[]);
+        // Lit and opaque first (the balls from their own buffer) ...
+        let mut draw_calls = 0;
+        pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
+        pass.set_pipeline(&self.pipelines.lit);
+        draw_calls += draw(&mut pass, &self.quad, ranges.room.clone());
+        draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
+        pass.set_vertex_buffer(1, self.balls.buffer.slice(..));
+        pass.set_pipeline(&self.pipelines.ball);
+        draw_calls += draw(&mut pass, &self.quad, self.balls.range());
+        pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
+        // ... then what glows and is not lit (the bulb, the fireball's heart) ...
+        pass.set_pipeline(&self.pipelines.emissive);
+        draw_calls += draw(&mut pass, &self.sphere, ranges.lamps.clone());
+        draw_calls + self.particles(&mut pass, ranges)
+    }
+
+    /// The see-through particles and the fireball, last in the scene pass:
+    /// they blend over what is behind them.
+    fn particles(&self, pass: &mut wgpu::RenderPass, ranges: &Ranges) -> u32 {
+        pass.set_pipeline(&self.pipelines.glow);
+        draw(pass, &self.cube, ranges.cubes.clone())
+            + draw(pass, &self.sphere, ranges.shells.clone())
+    }
+
+    /// The HDR frame, darkened by the occlusion and glowing, tone-mapped
+    /// into `output`, with the cursor on top.
+    fn tonemap_pass(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &Targets,
+        output: &wgpu::TextureView,
+    ) -> u32 {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("tonemap"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: output,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipelines.tonemap);
+        pass.set_bind_group(0, &targets.tonemap_bind_group, &[]);
+        pass.draw(0..3, 0..1);
+        1 + self
+            .cursor
+            .draw(queue, &mut pass, targets.width, targets.height)
     }
 
     fn ensure_targets(&mut self, gpu: &Gpu, width: u32, height: u32) {
@@ -332,14 +455,34 @@ impl Renderer {
         {
             return;
         }
-        self.targets = Some(Targets::new(
-            &gpu.device,
-            (width, height),
-            self.settings.msaa,
-            &self.tonemap_layout,
-            &self.tonemap_params,
-        ));
+        let kit = TargetKit {
+            samples: self.settings.msaa,
+            tonemap_layout: &self.tonemap_layout,
+            tonemap_params: &self.tonemap_params,
+            smooth_sampler: &self.smooth_sampler,
+            bloom: &self.bloom,
+            occlusion: &self.occlusion,
+        };
+        self.targets = Some(Targets::new(&gpu.device, (width, height), &kit));
     }
+}
+
+/// A colour attachment that is drawn into `multi` and resolved into
+/// `single`, or drawn into `single` when there are no samples to resolve.
+fn attachment<'a>(
+    single: &'a wgpu::TextureView,
+    multi: Option<&'a wgpu::TextureView>,
+    clear: wgpu::Color,
+) -> Option<wgpu::RenderPassColorAttachment<'a>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view: multi.unwrap_or(single),
+        depth_slice: None,
+        resolve_target: multi.map(|_| single),
+        ops: wgpu::Operations {
+            load: wgpu::LoadOp::Clear(clear),
+            store: wgpu::StoreOp::Store,
+        },
+    })
 }
 
 fn draw(pass: &mut wgpu::RenderPass, mesh: &GpuMesh, instances: std::ops::Range<u32>) -> u32 {

@@ -2,7 +2,7 @@
 //! target, with which shader entry points, blending and depth.
 
 use super::bindings::Layouts;
-use super::{DEPTH_FORMAT, HDR_FORMAT, RenderSettings};
+use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT, RenderSettings};
 use crate::instances::{BALL_MATERIAL, BallInstance, Instance};
 use crate::mesh::Vertex;
 use crate::shadow;
@@ -81,11 +81,7 @@ impl Pipelines {
                     module: &shader,
                     entry_point: Some(entry),
                     compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: HDR_FORMAT,
-                        blend,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
+                    targets: &scene_targets(blend),
                 }),
                 multiview_mask: None,
                 cache: None,
@@ -133,11 +129,7 @@ impl Pipelines {
                     constants: &ball_constants,
                     ..Default::default()
                 },
-                targets: &[Some(wgpu::ColorTargetState {
-                    format: HDR_FORMAT,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
+                targets: &scene_targets(None),
             }),
             multiview_mask: None,
             cache: None,
@@ -233,6 +225,28 @@ impl Pipelines {
             tonemap: tonemap_pipeline,
         }
     }
+}
+
+/// The scene pass's two targets: the HDR colour, and the surface's normal
+/// and distance for the occlusion, which only opaque things (no `blend`)
+/// write: see-through particles leave the surface behind them there.
+fn scene_targets(blend: Option<wgpu::BlendState>) -> [Option<wgpu::ColorTargetState>; 2] {
+    [
+        Some(wgpu::ColorTargetState {
+            format: HDR_FORMAT,
+            blend,
+            write_mask: wgpu::ColorWrites::ALL,
+        }),
+        Some(wgpu::ColorTargetState {
+            format: GEOMETRY_FORMAT,
+            blend: None,
+            write_mask: if blend.is_some() {
+                wgpu::ColorWrites::empty()
+            } else {
+                wgpu::ColorWrites::ALL
+            },
+        }),
+    ]
 }
 
 /// A pipeline that draws straight into the output, in screen space: no

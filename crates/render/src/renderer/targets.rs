@@ -1,7 +1,10 @@
 //! The frame's own render targets, made for its size: the HDR colour it is
-//! lit into (multisampled, then resolved), and its depth.
+//! lit into and the surfaces' normals and distances (multisampled, then
+//! resolved), its depth, the bloom's chain and the contact occlusion, and tone mapping's bind group over them.
 
-use super::{DEPTH_FORMAT, HDR_FORMAT};
+use super::bloom::{BloomChain, BloomPipelines};
+use super::occlusion::{OcclusionPipeline, OcclusionTarget};
+use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT};
 
 /// Size-dependent render targets.
 pub(super) struct Targets {
@@ -11,20 +14,28 @@ pub(super) struct Targets {
     pub msaa: Option<wgpu::TextureView>,
     pub hdr: wgpu::TextureView,
     pub depth: wgpu::TextureView,
-    /// Reads `hdr` for tone mapping.
+    /// The surfaces' normals and distances, resolved; the occlusion reads it.
+    pub geometry: wgpu::TextureView,
+    pub geometry_msaa: Option<wgpu::TextureView>,
+    pub bloom: BloomChain,
+    pub occlusion: OcclusionTarget,
+    /// Reads `hdr`, the glow and the occlusion for tone mapping.
     pub tonemap_bind_group: wgpu::BindGroup,
 }
 
+/// What the targets are made with besides their size.
+pub(super) struct TargetKit<'a> {
+    pub samples: u32,
+    pub tonemap_layout: &'a wgpu::BindGroupLayout,
+    pub tonemap_params: &'a wgpu::Buffer,
+    pub smooth_sampler: &'a wgpu::Sampler,
+    pub bloom: &'a BloomPipelines,
+    pub occlusion: &'a OcclusionPipeline,
+}
+
 impl Targets {
-    /// Targets of `width` by `height` pixels with `samples` per pixel, and
-    /// the tone mapping's bind group (`layout`) over them with `params`.
-    pub fn new(
-        device: &wgpu::Device,
-        (width, height): (u32, u32),
-        samples: u32,
-        layout: &wgpu::BindGroupLayout,
-        params: &wgpu::Buffer,
-    ) -> Targets {
+    /// Targets of `width` by `height` pixels.
+    pub fn new(device: &wgpu::Device, (width, height): (u32, u32), kit: &TargetKit) -> Targets {
         let size = wgpu::Extent3d {
             width,
             height,
@@ -44,29 +55,33 @@ impl Targets {
                 })
                 .create_view(&Default::default())
         };
-        let hdr = texture(
-            "hdr",
-            HDR_FORMAT,
-            1,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
-        );
-        let msaa = (samples > 1).then(|| {
-            texture(
-                "hdr msaa",
-                HDR_FORMAT,
-                samples,
-                wgpu::TextureUsages::RENDER_ATTACHMENT,
-            )
-        });
+        let drawn_and_read =
+            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+        let hdr = texture("hdr", HDR_FORMAT, 1, drawn_and_read);
+        let multisampled = |label, format| {
+            (kit.samples > 1).then(|| {
+                texture(
+                    label,
+                    format,
+                    kit.samples,
+                    wgpu::TextureUsages::RENDER_ATTACHMENT,
+                )
+            })
+        };
+        let msaa = multisampled("hdr msaa", HDR_FORMAT);
+        let geometry = texture("geometry", GEOMETRY_FORMAT, 1, drawn_and_read);
+        let geometry_msaa = multisampled("geometry msaa", GEOMETRY_FORMAT);
         let depth = texture(
             "depth",
             DEPTH_FORMAT,
-            samples,
+            kit.samples,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
+        let bloom = BloomChain::new(device, kit.bloom, &hdr, (width, height));
+        let occlusion = kit.occlusion.target(device, &geometry, (width, height));
         let tonemap_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("tonemap"),
-            layout,
+            layout: kit.tonemap_layout,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
@@ -74,7 +89,19 @@ impl Targets {
                 },
                 wgpu::BindGroupEntry {
                     binding: 1,
-                    resource: params.as_entire_binding(),
+                    resource: kit.tonemap_params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&bloom.top),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&occlusion.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::Sampler(kit.smooth_sampler),
                 },
             ],
         });
@@ -84,6 +111,10 @@ impl Targets {
             msaa,
             hdr,
             depth,
+            geometry,
+            geometry_msaa,
+            bloom,
+            occlusion,
             tonemap_bind_group,
         }
     }

@@ -24,6 +24,8 @@ const MAX_RATE: f64 = 100_000.0;
 const MAX_INTENSITY: f64 = 100.0;
 /// Largest radius (metres) of the light's bulb.
 const MAX_BULB_RADIUS: f64 = 1.0;
+/// Largest strength of the bloom's glow.
+const MAX_BLOOM_STRENGTH: f64 = 4.0;
 
 /// One end of an allowed interval.
 #[derive(Clone, Copy)]
@@ -383,6 +385,18 @@ impl Checker<'_> {
             l.drop,
             Bounds::closed(0.0, self.scene.world.room.size.y - bulb),
             "at most the room's height minus light.bulb_radius",
+        )?;
+        self.real32(
+            "light.bloom_strength",
+            l.bloom_strength,
+            Bounds::closed(0.0, MAX_BLOOM_STRENGTH),
+            "",
+        )?;
+        self.real32(
+            "light.bloom_threshold",
+            l.bloom_threshold,
+            Bounds::positive(MAX_INTENSITY),
+            "",
         )
     }
 

@@ -51,6 +51,12 @@ pub(super) struct FileLight {
     pub(super) ambient: Option<Spanned<f64>>,
     pub(super) bulb_radius: Option<Spanned<f64>>,
     pub(super) drop: Option<Spanned<f64>>,
+    pub(super) bloom: Option<Spanned<bool>>,
+    pub(super) bloom_strength: Option<Spanned<f64>>,
+    pub(super) bloom_threshold: Option<Spanned<f64>>,
+    pub(super) fireball_light: Option<Spanned<bool>>,
+    pub(super) indirect: Option<Spanned<bool>>,
+    pub(super) occlusion: Option<Spanned<bool>>,
 }
 
 #[derive(Deserialize)]

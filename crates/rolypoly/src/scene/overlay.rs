@@ -342,6 +342,27 @@ impl Overlay<'_> {
             |v| v as f32,
         );
         self.set("light.drop", &mut c.drop, l.drop, |v| v as f32);
+        self.set("light.bloom", &mut c.bloom, l.bloom, |v| v);
+        self.set(
+            "light.bloom_strength",
+            &mut c.bloom_strength,
+            l.bloom_strength,
+            |v| v as f32,
+        );
+        self.set(
+            "light.bloom_threshold",
+            &mut c.bloom_threshold,
+            l.bloom_threshold,
+            |v| v as f32,
+        );
+        self.set(
+            "light.fireball_light",
+            &mut c.fireball_light,
+            l.fireball_light,
+            |v| v,
+        );
+        self.set("light.indirect", &mut c.indirect, l.indirect, |v| v);
+        self.set("light.occlusion", &mut c.occlusion, l.occlusion, |v| v);
     }
 
     fn apply_effects(&mut self, e: FileEffects, c: &mut EffectsConfig) -> Result<(), SceneError> {

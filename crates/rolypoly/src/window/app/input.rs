@@ -11,6 +11,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::CursorGrabMode;
 
 use super::App;
+use rolypoly_render::Camera;
 
 /// What the mouse does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -255,13 +256,16 @@ impl App {
         }
         let room = *self.world.room();
         let margin = Vec3::splat(0.15);
+        // Inside the room, or back out to where the view starts, in front
+        // of its open front wall.
+        let start = Camera::overview(self.world.config().room.size.as_vec3()).eye;
         self.camera.walk(
             forward as f32,
             right as f32,
             self.options.move_speed,
             elapsed,
             room.min.as_vec3() + margin,
-            room.max.as_vec3() - margin,
+            (room.max.as_vec3() - margin).max(start),
         );
     }
 }
