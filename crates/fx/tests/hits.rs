@@ -2,7 +2,7 @@
 //! wall's plane; a ball hit converges on the ball, then bursts (X3, X4).
 
 use glam::{DVec3, Vec3};
-use rolypoly_fx::{Effects, EffectsConfig, ParticleKind};
+use rolypoly_fx::{Effects, EffectsConfig, FLASH_SECONDS, ParticleKind};
 use rolypoly_physics::{Event, EventKind, World, WorldConfig};
 
 fn weightless_room(balls: usize) -> World {
@@ -192,4 +192,29 @@ fn the_same_seed_gives_the_same_particles() {
             .collect::<Vec<_>>()
     };
     assert_eq!(run(), run());
+}
+
+#[test]
+fn a_hit_flashes_where_it_happened_and_the_flash_fades_out() {
+    let mut world = weightless_room(0);
+    let mut fx = Effects::new(EffectsConfig::default(), 1);
+    assert_eq!(fx.flash(), None, "nothing has been hit");
+    world.launch_fireball(Some((DVec3::new(0.0, 2.0, 0.0), DVec3::NEG_X)));
+    let hit = run_until(&mut world, &mut fx, |k| {
+        matches!(k, EventKind::FireballSurface { .. })
+    });
+    world.remove_fireball();
+    let first = fx.flash().expect("a flash at the hit");
+    assert_eq!(first.position, hit.point.as_vec3());
+    assert!(first.strength > 0.9, "{first:?}");
+    // It only fades, and is gone after FLASH_SECONDS.
+    let dt = 1.0 / 120.0;
+    let mut last = first.strength;
+    for _ in 0..(FLASH_SECONDS / dt as f32) as usize + 2 {
+        fx.update(dt, None);
+        let now = fx.flash().map_or(0.0, |f| f.strength);
+        assert!(now <= last, "{now} after {last}");
+        last = now;
+    }
+    assert_eq!(fx.flash(), None);
 }

@@ -39,7 +39,7 @@ impl Default for LightConfig {
         LightConfig {
             color: [1.0, 0.86, 0.68],
             intensity: 3.2,
-            ambient: 0.16,
+            ambient: 0.22,
             bulb_radius: 0.09,
             drop: 0.25,
             bloom: true,

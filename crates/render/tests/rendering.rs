@@ -11,7 +11,7 @@ use rolypoly_physics::{World, WorldConfig};
 use rolypoly_render::{BallView, Camera, Gpu, RenderSettings, SceneView, Snapshot};
 
 mod common;
-use common::check_golden;
+use common::{check_golden, pixel_of};
 
 fn snapshot(config: &WorldConfig, settings: RenderSettings, w: u32, h: u32) -> Snapshot {
     Snapshot::new(config, settings, w, h, None).unwrap_or_else(|e| panic!("cannot render: {e}"))
@@ -85,15 +85,6 @@ fn opengl_draws_the_same_golden_frame() {
 }
 
 // --- shadows -----------------------------------------------------------------
-
-/// The pixel where a world point appears.
-fn pixel_of(camera: &Camera, p: Vec3, w: u32, h: u32) -> (u32, u32) {
-    let clip = camera.view_projection(w as f32 / h as f32) * p.extend(1.0);
-    let ndc = clip.truncate() / clip.w;
-    let x = ((ndc.x * 0.5 + 0.5) * w as f32) as u32;
-    let y = ((0.5 - ndc.y * 0.5) * h as f32) as u32;
-    (x.min(w - 1), y.min(h - 1))
-}
 
 #[test]
 fn a_tumbler_shadows_the_floor_and_lit_floor_is_unchanged() {
@@ -268,8 +259,13 @@ fn trace(ball: &BallView, origin: Vec3, dir: Vec3) -> (Option<f32>, f32) {
 fn balls_are_exact_spheres_that_hide_each_other_where_they_meet() {
     let (config, mut view, camera) = empty_room_and_close_camera();
     // A black room, that no part of a ball (not even its white highlight)
-    // is mistaken for.
+    // is mistaken for, and no glow or occlusion to spread a ball's colour
+    // beyond its outline. The ambient light stays even: a black room
+    // bounces none, which would leave the balls' dark sides black too.
     view.room_colors = [Vec3::ZERO; 6];
+    view.light.bloom = None;
+    view.light.occlusion = false;
+    view.light.indirect = false;
     let (w, h) = (240, 160);
     // One sample per pixel and no shadows: a pixel is a ball's exactly when
     // the ray through its centre meets that ball first.

@@ -1,7 +1,20 @@
-//! Golden-frame comparison shared by the rendering tests.
+//! Golden-frame comparison and the pixel of a world point, shared by the
+//! rendering tests.
 
+use glam::Vec3;
 use image::RgbaImage;
+use rolypoly_render::Camera;
 use std::path::PathBuf;
+
+/// The pixel where a world point appears in a frame of `w` x `h`.
+#[allow(dead_code)] // Not every test file that shares this module needs it.
+pub fn pixel_of(camera: &Camera, p: Vec3, w: u32, h: u32) -> (u32, u32) {
+    let clip = camera.view_projection(w as f32 / h as f32) * p.extend(1.0);
+    let ndc = clip.truncate() / clip.w;
+    let x = ((ndc.x * 0.5 + 0.5) * w as f32) as u32;
+    let y = ((0.5 - ndc.y * 0.5) * h as f32) as u32;
+    (x.min(w - 1), y.min(h - 1))
+}
 
 /// A frame matches its golden when fewer than 0.5% of its pixels differ by
 /// more than 16/255 in any channel. (Software and hardware rasterisers round
@@ -13,6 +26,7 @@ fn golden_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../tests/golden")
 }
 
+#[allow(dead_code)] // As above.
 pub fn check_golden(name: &str, actual: &RgbaImage) {
     let dir = golden_dir();
     let path = dir.join(format!("{name}.png"));
