@@ -1,21 +1,26 @@
-//! Off-screen frame benchmark: 1280x720, MSAA 4x, shadows on.
+//! Off-screen frame benchmark: 1280x720, MSAA 4x, shadows on, the fireball
+//! in flight.
 //!
 //! Run with `cargo bench -p rolypoly-render`. For each scene it prints frames
 //! per second (waiting for the GPU after every frame), the CPU time our own
 //! code spends building and recording a frame, and the draw calls per frame,
-//! which must not grow with the number of balls. Each scene is drawn twice
-//! over: as the program draws it, and with the balls' depth tested only after
-//! their fragments are traced (`early_ball_depth` off), to show what testing
-//! it first saves. Each draws at least three frames and for at least two
+//! which must not grow with the number of balls. Each scene is drawn with
+//! every light effect on (as the program draws it), with each one off in
+//! turn, and with all off, and the all-on rate as a share of the all-off
+//! one; then once more with the balls' depth tested only after their
+//! fragments are traced (`early_ball_depth` off), to show what testing it
+//! first saves. Each draws at least three frames and for at least two
 //! seconds: a software renderer is done within two minutes, and a GPU's
 //! figure averages over hundreds of frames.
 
 use rolypoly_physics::{World, WorldConfig};
-use rolypoly_render::{Camera, RenderSettings, SceneView, Snapshot};
+use rolypoly_render::{Camera, Light, RenderSettings, SceneView, Snapshot};
 use std::time::{Duration, Instant};
 
+const WIDTH: u32 = 1280;
+const HEIGHT: u32 = 720;
+
 fn main() {
-    let (width, height) = (1280, 720);
     let mut ten_k = WorldConfig::default();
     ten_k.balls.count = 10_000;
     ten_k.room.size = glam::DVec3::new(16.0, 6.0, 16.0);
@@ -38,47 +43,64 @@ fn main() {
         "scene", "frames", "frames/s", "CPU ms/frame", "draw calls"
     );
     for (name, config) in cases {
-        let world = match World::new(config.clone(), 1) {
+        let mut world = match World::new(config.clone(), 1) {
             Ok(w) => w,
             Err(e) => {
                 eprintln!("{name}: {e}");
                 std::process::exit(1);
             }
         };
-        let view = SceneView::from_world(&world, None);
-        let camera = Camera::overview(view.room_size);
+        world.launch_fireball(None);
+        let all_on = SceneView::from_world(&world, None);
+        let camera = Camera::overview(all_on.room_size);
+        let with = |change: fn(&mut Light)| {
+            let mut view = all_on.clone();
+            change(&mut view.light);
+            view
+        };
+        let variants: [(&str, SceneView); 6] = [
+            ("", all_on.clone()),
+            ("  no bloom", with(|l| l.bloom = None)),
+            ("  no fireball light", with(|l| l.fireball_light = false)),
+            ("  no indirect light", with(|l| l.indirect = false)),
+            ("  no occlusion", with(|l| l.occlusion = false)),
+            (
+                "  all effects off",
+                with(|l| {
+                    l.bloom = None;
+                    l.fireball_light = false;
+                    l.indirect = false;
+                    l.occlusion = false;
+                }),
+            ),
+        ];
+        let mut snap = snapshot(&config, RenderSettings::default());
+        adapter = snap.gpu.describe();
+        early_available |= snap.renderer.settings().early_ball_depth;
+        let mut rates = Vec::new();
+        for (label, view) in &variants {
+            let label = if label.is_empty() { name } else { label };
+            let frame = measure(&mut snap, view, &camera);
+            rates.push(frame.per_second);
+            print_row(label, &frame);
+        }
+        println!(
+            "{:<36} {:>8} {:>10.2}",
+            "  all on over all off",
+            "",
+            rates[0] / rates[rates.len() - 1]
+        );
         let late = RenderSettings {
             early_ball_depth: false,
             ..RenderSettings::default()
         };
-        let mut rates = [0.0; 2];
-        for (k, settings) in [RenderSettings::default(), late].into_iter().enumerate() {
-            let mut snap = match Snapshot::new(&config, settings, width, height, None) {
-                Ok(s) => s,
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    std::process::exit(1);
-                }
-            };
-            adapter = snap.gpu.describe();
-            early_available |= snap.renderer.settings().early_ball_depth;
-            let label = if k == 0 {
-                name.to_string()
-            } else {
-                "  the same, ball depth tested late".to_string()
-            };
-            let frame = measure(&mut snap, &view, &camera);
-            rates[k] = frame.per_second;
-            println!(
-                "{:<36} {:>8} {:>10.2} {:>14.3} {:>11}",
-                label, frame.count, frame.per_second, frame.cpu_ms, frame.draw_calls
-            );
-        }
+        let frame = measure(&mut snapshot(&config, late), &all_on, &camera);
+        print_row("  ball depth tested late", &frame);
         println!(
             "{:<36} {:>8} {:>10.2}",
             "  early over late",
             "",
-            rates[0] / rates[1]
+            rates[0] / frame.per_second
         );
     }
     println!("adapter: {adapter}");
@@ -87,6 +109,20 @@ fn main() {
             "(this adapter has no early depth test for shaders that write depth: both rows draw alike)"
         );
     }
+}
+
+fn snapshot(config: &WorldConfig, settings: RenderSettings) -> Snapshot {
+    Snapshot::new(config, settings, WIDTH, HEIGHT, None).unwrap_or_else(|e| {
+        eprintln!("error: {e}");
+        std::process::exit(1);
+    })
+}
+
+fn print_row(label: &str, frame: &Frames) {
+    println!(
+        "{:<36} {:>8} {:>10.2} {:>14.3} {:>11}",
+        label, frame.count, frame.per_second, frame.cpu_ms, frame.draw_calls
+    );
 }
 
 /// Frames drawn, their rate, our CPU time per frame and draw calls per frame.

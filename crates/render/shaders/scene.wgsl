@@ -250,9 +250,7 @@ fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f
 // seen from the point: the share of the point's cosine-weighted hemisphere
 // the panel covers. For a polygon that is exact and closed-form (Lambert):
 // the sum over its edges of the angle each edge subtends, weighted by how
-// the plane through the point and the edge faces the normal. The panel is
-// first clipped to the half-space in front of the point, so a wall partly
-// behind a ball counts only for the part the ball faces.
+// the plane through the point and the edge faces the normal.
 
 const TAU: f32 = 6.283185307;
 
@@ -273,36 +271,32 @@ fn wall_corner(wall: i32, k: i32) -> vec3<f32> {
 }
 
 // The form factor from the point `p` with normal `n` to surface `wall`.
+// Each edge is weighed by how the plane through p and the edge faces the
+// normal; a part of the panel behind the point counts against the rest, so
+// a panel is taken as no less than nothing. That is exact for the room's
+// own surfaces, which see every other surface whole, and near enough for a
+// ball or a tumbler, and it costs no clipping: four edges a panel.
 fn form_factor(p: vec3<f32>, n: vec3<f32>, wall: i32) -> f32 {
-    // Clip the panel, as seen from p, to the half-space n . x >= 0.
-    var polygon: array<vec3<f32>, 5>;
-    var count = 0;
+    var corners: array<vec3<f32>, 4>;
     for (var k = 0; k < 4; k++) {
-        let a = wall_corner(wall, k) - p;
-        let b = wall_corner(wall, (k + 1) % 4) - p;
-        let ha = dot(a, n);
-        let hb = dot(b, n);
-        if ha >= 0.0 {
-            polygon[count] = a;
-            count++;
-        }
-        if (ha >= 0.0) != (hb >= 0.0) {
-            polygon[count] = mix(a, b, ha / (ha - hb));
-            count++;
-        }
+        corners[k] = normalize(wall_corner(wall, k) - p);
     }
     var sum = 0.0;
-    for (var k = 0; k < count; k++) {
-        let a = normalize(polygon[k]);
-        let b = normalize(polygon[(k + 1) % count]);
+    for (var k = 0; k < 4; k++) {
+        let a = corners[k];
+        let b = corners[(k + 1) % 4];
         let c = cross(a, b);
         let s = length(c);
-        if s > 1e-6 {
-            sum += atan2(s, dot(a, b)) * dot(n, c) / s;
-        }
+        sum += atan2(s, dot(a, b)) * dot(n, c) / max(s, 1e-6);
     }
-    // The corners run one way round or the other as seen from p.
-    return abs(sum) / TAU;
+    // The corners run one way round or the other as seen from the room.
+    return max(sum * wall_winding(wall), 0.0) / TAU;
+}
+
+// +1 or -1: the sign that makes a panel's sum positive for points in front
+// of it, from the order `wall_corner` lists its corners in.
+fn wall_winding(wall: i32) -> f32 {
+    return select(-1.0, 1.0, wall == 0 || wall == 3 || wall == 5);
 }
 
 // Light arriving at `world` (normal `n`) from the six surfaces.
