@@ -4,9 +4,11 @@
 // as in Jimenez's "Next generation post processing in Call of Duty:
 // Advanced Warfare" (2014): each step down takes 13 taps (five overlapping
 // 4 x 4 boxes, which keeps the result from flickering as bright pixels move),
-// the first step keeping only what lies above the threshold; each step up
-// spreads the smaller image with a 3 x 3 tent and adds it to the larger.
-// The top of the chain then holds the sum of every level: a wide, soft glow.
+// but the first, from the whole frame, which takes one 4 x 4 box and keeps
+// only what lies above the threshold; each step up
+// spreads the smaller image with a 3 x 3 tent and adds it to the larger,
+// up to the second level; tone mapping adds that to the top level as it
+// reads them. Together they hold the sum of every level: a wide, soft glow.
 
 @group(0) @binding(0) var source: texture_2d<f32>;
 @group(0) @binding(1) var source_sampler: sampler;
@@ -69,9 +71,18 @@ fn above_threshold(color: vec3<f32>) -> vec3<f32> {
     return color * kept;
 }
 
+// The first step reads the whole frame, the costliest read of the chain:
+// the 4 x 4 box around each texel (four bilinear taps, a third of the 13)
+// still counts every pixel of the frame, so a small bright spot that moves
+// neither drops out nor flickers.
+fn box_downsample(uv: vec2<f32>) -> vec3<f32> {
+    return (tap(uv, vec2<f32>(-1.0, -1.0)) + tap(uv, vec2<f32>(1.0, -1.0))
+        + tap(uv, vec2<f32>(-1.0, 1.0)) + tap(uv, vec2<f32>(1.0, 1.0))) * 0.25;
+}
+
 @fragment
 fn fs_downsample_first(in: ScreenOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(above_threshold(downsample(in.uv)), 1.0);
+    return vec4<f32>(above_threshold(box_downsample(in.uv)), 1.0);
 }
 
 @fragment

@@ -9,8 +9,8 @@
 // sample whose pixel shows something nearer the eye than the sample is
 // inside an object: the sky in that direction is blocked. Samples blocked
 // by something far behind or in front of the point (a ball in front of a
-// distant wall) count less the further it is. Each pixel turns its pattern by its own angle; tone
-// mapping blurs the pattern away.
+// distant wall) count less the further it is. Each pixel turns its pattern
+// by its own angle; tone mapping blurs the pattern away.
 
 // What the scene pass saw at each pixel: xyz the surface's normal, w its
 // distance from the eye (0: nothing).
@@ -27,7 +27,7 @@ struct Params {
 };
 @group(0) @binding(1) var<uniform> params: Params;
 
-const SAMPLES: i32 = 12;
+const SAMPLES: i32 = 8;
 const TAU: f32 = 6.283185307;
 const GOLDEN_ANGLE: f32 = 2.399963230;
 
@@ -100,9 +100,9 @@ fn fs_occlusion(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32
         let sample_pixel = vec2<i32>(uv * vec2<f32>(frame_size()));
         let seen = surface_at(sample_pixel).w;
         if seen > 0.0 && seen < distance(sample, params.eye.xyz) {
-            let scene = world_at(sample_pixel, seen);
-            // Blocked by something near the point: fully; far off: less.
-            blocked += clamp(radius / max(distance(scene, p), 1e-4), 0.0, 1.0);
+            // Blocked by something near the point: fully; far in front of it
+            // or behind it, as told by the distances from the eye: less.
+            blocked += clamp(radius / max(abs(seen - surface.w), 1e-4), 0.0, 1.0);
         }
     }
     let open = 1.0 - params.settings.x * blocked / f32(SAMPLES);

@@ -32,9 +32,9 @@ struct Globals {
     // xyz: half the room's width, its height, half its depth;
     // w: indirect light on (1) or off (0).
     room: vec4<f32>,
-    // rgb: the light each surface sends back into the room (floor, ceiling,
-    // left, right, back, front), scaled to the ambient strength; w: unused.
-    wall_light: array<vec4<f32>, 6>,
+    // xyz: the irradiance volume's probes along each axis; w: its texture's
+    // probes along each axis and direction.
+    irradiance_probes: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> globals: Globals;
@@ -42,6 +42,11 @@ struct Globals {
 @group(0) @binding(2) var shadow_sampler: sampler_comparison;
 @group(0) @binding(3) var paint: texture_2d<f32>;
 @group(0) @binding(4) var paint_sampler: sampler;
+// The light bounced by the room's surfaces, gathered at a grid of probes
+// from each of six directions (see irradiance.rs): one slab along z per
+// direction, in the order +x, -x, +y, -y, +z, -z.
+@group(0) @binding(5) var irradiance: texture_3d<f32>;
+@group(0) @binding(6) var irradiance_sampler: sampler;
 
 struct VertexIn {
     @location(0) position: vec3<f32>,
@@ -232,7 +237,7 @@ fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f
     }
     // The light the room bounces back: as much as the ambient strength says,
     // either the same everywhere or, worked out, from each surface in its
-    // colour (`wall_light` is scaled to the same mean; see lighting.rs).
+    // colour (scaled to the same mean; see lighting.rs).
     if globals.room.w > 0.5 {
         color += base * indirect_light(world, n);
     } else {
@@ -244,70 +249,36 @@ fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f
 // --- one bounce of light from the room's surfaces ----------------------------
 //
 // Each of the six surfaces is a large, evenly lit panel: it sends back the
-// light that falls on it on average, in its own colour (`wall_light`,
-// worked out on the CPU each frame from both lights; see indirect.rs). A
-// point receives from each panel that light times the panel's form factor
-// seen from the point: the share of the point's cosine-weighted hemisphere
-// the panel covers. For a polygon that is exact and closed-form (Lambert):
-// the sum over its edges of the angle each edge subtends, weighted by how
-// the plane through the point and the edge faces the normal.
+// light that falls on it on average, in its own colour (worked out on the
+// CPU each frame from both lights; see lighting.rs). How much of it a
+// point receives is the panel's form factor seen from there, gathered
+// ahead of the frame at a grid of probes for patches facing each axis
+// direction (irradiance.rs). A point reads the three directions its normal
+// leans towards, each weighed by the square of the normal's component
+// along it (the squares sum to one), blended between its eight nearest
+// probes by the texture filter.
 
-const TAU: f32 = 6.283185307;
-
-// Corner `k` (0..4, in order around it) of surface `wall`.
-fn wall_corner(wall: i32, k: i32) -> vec3<f32> {
-    let r = globals.room.xyz;
-    // The corner's two signs around the surface.
-    let a = select(-1.0, 1.0, k == 1 || k == 2);
-    let b = select(-1.0, 1.0, k >= 2);
-    switch wall {
-        case 0: { return vec3<f32>(a * r.x, 0.0, b * r.z); }
-        case 1: { return vec3<f32>(a * r.x, r.y, b * r.z); }
-        case 2: { return vec3<f32>(-r.x, (a * 0.5 + 0.5) * r.y, b * r.z); }
-        case 3: { return vec3<f32>(r.x, (a * 0.5 + 0.5) * r.y, b * r.z); }
-        case 4: { return vec3<f32>(a * r.x, (b * 0.5 + 0.5) * r.y, -r.z); }
-        default: { return vec3<f32>(a * r.x, (b * 0.5 + 0.5) * r.y, r.z); }
-    }
-}
-
-// The form factor from the point `p` with normal `n` to surface `wall`.
-// Each edge is weighed by how the plane through p and the edge faces the
-// normal; a part of the panel behind the point counts against the rest, so
-// a panel is taken as no less than nothing. That is exact for the room's
-// own surfaces, which see every other surface whole, and near enough for a
-// ball or a tumbler, and it costs no clipping: four edges a panel.
-fn form_factor(p: vec3<f32>, n: vec3<f32>, wall: i32) -> f32 {
-    var corners: array<vec3<f32>, 4>;
-    for (var k = 0; k < 4; k++) {
-        corners[k] = normalize(wall_corner(wall, k) - p);
-    }
-    var sum = 0.0;
-    for (var k = 0; k < 4; k++) {
-        let a = corners[k];
-        let b = corners[(k + 1) % 4];
-        let c = cross(a, b);
-        let s = length(c);
-        sum += atan2(s, dot(a, b)) * dot(n, c) / max(s, 1e-6);
-    }
-    // The corners run one way round or the other as seen from the room.
-    return max(sum * wall_winding(wall), 0.0) / TAU;
-}
-
-// +1 or -1: the sign that makes a panel's sum positive for points in front
-// of it, from the order `wall_corner` lists its corners in.
-fn wall_winding(wall: i32) -> f32 {
-    return select(-1.0, 1.0, wall == 0 || wall == 3 || wall == 5);
+// The light gathered at `cell` (in probes, clamped to those in use) from
+// direction `slab` (0 ..= 5).
+fn gathered(cell: vec3<f32>, slab: f32) -> vec3<f32> {
+    let per_axis = globals.irradiance_probes.w;
+    let texel = vec3<f32>(cell.xy, cell.z + slab * per_axis);
+    let uvw = texel / vec3<f32>(per_axis, per_axis, 6.0 * per_axis);
+    return textureSampleLevel(irradiance, irradiance_sampler, uvw, 0.0).rgb;
 }
 
 // Light arriving at `world` (normal `n`) from the six surfaces.
 fn indirect_light(world: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
-    // A hair off the surface, so that its own panel is never under it.
-    let p = world + n * 0.002;
-    var light = vec3<f32>(0.0);
-    for (var wall = 0; wall < 6; wall++) {
-        light += globals.wall_light[wall].rgb * form_factor(p, n, wall);
-    }
-    return light;
+    let probes = globals.irradiance_probes.xyz;
+    let room = globals.room.xyz;
+    let from_corner = (world - vec3<f32>(-room.x, 0.0, -room.z)) / vec3<f32>(2.0 * room.x, room.y, 2.0 * room.z);
+    // Probe k stands at the centre of its cell, k + 1/2; beyond the outer
+    // probes the light is taken as theirs.
+    let cell = clamp(from_corner * probes, vec3<f32>(0.5), probes - 0.5);
+    let weight = n * n;
+    return weight.x * gathered(cell, select(1.0, 0.0, n.x >= 0.0))
+        + weight.y * gathered(cell, select(3.0, 2.0, n.y >= 0.0))
+        + weight.z * gathered(cell, select(5.0, 4.0, n.z >= 0.0));
 }
 
 // --- balls: spheres traced on a square ---------------------------------------
@@ -407,15 +378,21 @@ fn ball_depth(view_proj: mat4x4<f32>, point: vec3<f32>, square_depth: f32) -> f3
     return max(depth_of(view_proj, point), square_depth);
 }
 
-@vertex
-fn vs_ball(v: VertexIn, ball: BallIn) -> BallOut {
-    let world = ball_square_corner(ball.sphere, globals.camera_pos.xyz, v.position.xy * 2.0 - 1.0);
+// The corner `v` of the square that covers `ball` seen from `eye`, drawn
+// with `view_proj`: the same for the eye's view and the light's.
+fn ball_square(v: VertexIn, ball: BallIn, eye: vec3<f32>, view_proj: mat4x4<f32>) -> BallOut {
+    let world = ball_square_corner(ball.sphere, eye, v.position.xy * 2.0 - 1.0);
     var out: BallOut;
-    out.clip = globals.view_proj * vec4<f32>(world, 1.0);
+    out.clip = view_proj * vec4<f32>(world, 1.0);
     out.world = world;
     out.sphere = ball.sphere;
     out.color = ball.color;
     return out;
+}
+
+@vertex
+fn vs_ball(v: VertexIn, ball: BallIn) -> BallOut {
+    return ball_square(v, ball, globals.camera_pos.xyz, globals.view_proj);
 }
 
 // With multisampling, a fragment on the outline covers the share of its
@@ -494,20 +471,9 @@ fn vs_shadow(v: VertexIn, i: InstanceIn) -> @builtin(position) vec4<f32> {
     return shadow_face_uniform.view_proj * (model_of(i) * vec4<f32>(v.position, 1.0));
 }
 
-struct BallShadowOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-    @location(1) @interpolate(flat) sphere: vec4<f32>,
-};
-
 @vertex
-fn vs_ball_shadow(v: VertexIn, ball: BallIn) -> BallShadowOut {
-    let world = ball_square_corner(ball.sphere, shadow_face_uniform.light_pos.xyz, v.position.xy * 2.0 - 1.0);
-    var out: BallShadowOut;
-    out.clip = shadow_face_uniform.view_proj * vec4<f32>(world, 1.0);
-    out.world = world;
-    out.sphere = ball.sphere;
-    return out;
+fn vs_ball_shadow(v: VertexIn, ball: BallIn) -> BallOut {
+    return ball_square(v, ball, shadow_face_uniform.light_pos.xyz, shadow_face_uniform.view_proj);
 }
 
 // The depth of the sphere seen from the light. A written depth takes none of
@@ -515,7 +481,7 @@ fn vs_ball_shadow(v: VertexIn, ball: BallIn) -> BallShadowOut {
 // surface along its normal (see `light_visibility`), keeps a ball from
 // shadowing itself all the same.
 @fragment
-fn fs_ball_shadow(in: BallShadowOut) -> @builtin(frag_depth) f32 {
+fn fs_ball_shadow(in: BallOut) -> @builtin(frag_depth) f32 {
     let light = shadow_face_uniform.light_pos.xyz;
     let hit = trace_ball(in.sphere, light, in.world);
     if hit.miss > 1.0 {

@@ -6,7 +6,8 @@
 
 struct Params {
     // x: exposure; y: the glow's strength, divided by the levels it sums
-    // (0: no bloom); z: occlusion on (1) or off (0); w: unused.
+    // (0: no bloom); z: occlusion on (1) or off (0); w: the bloom's chain
+    // has a second level (1) or not (0).
     values: vec4<f32>,
 };
 @group(0) @binding(1) var<uniform> params: Params;
@@ -47,6 +48,17 @@ fn open_at(position: vec2<f32>) -> f32 {
     return sum * 0.25;
 }
 
+// The bloom's glow: its chain's top level, and the second, which holds the
+// sum of all below it (see bloom.rs), spread smoothly from its smaller image.
+fn glow_at(position: vec2<f32>) -> vec3<f32> {
+    let uv = position / vec2<f32>(textureDimensions(hdr));
+    var sum = textureSampleLevel(glow, smooth_sampler, uv, 0.0).rgb;
+    if params.values.w > 0.5 {
+        sum += textureSampleLevel(glow, smooth_sampler, uv, 1.0).rgb;
+    }
+    return sum;
+}
+
 @fragment
 fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     var color = textureLoad(hdr, vec2<i32>(position.xy), 0).rgb;
@@ -54,8 +66,7 @@ fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
         color *= open_at(position.xy);
     }
     if params.values.y > 0.0 {
-        let uv = position.xy / vec2<f32>(textureDimensions(hdr));
-        color += params.values.y * textureSampleLevel(glow, smooth_sampler, uv, 0.0).rgb;
+        color += params.values.y * glow_at(position.xy);
     }
     return vec4<f32>(aces(color * params.values.x), 1.0);
 }

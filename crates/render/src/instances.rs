@@ -2,6 +2,7 @@
 //! buffers that carry it, and how a scene view fills them each frame.
 
 use crate::gpu::Gpu;
+use crate::room;
 use crate::view::SceneView;
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
@@ -153,33 +154,13 @@ pub fn fill_scene(list: &mut Vec<Instance>, view: &SceneView) -> Ranges {
     list.clear();
     let mut ranges = Ranges::default();
     let start = list.len() as u32;
-    let size = view.room_size;
-    let (hx, hz) = (0.5 * size.x, 0.5 * size.z);
-    // Each wall maps the unit quad's x and y onto two directions whose
-    // cross product is the wall's inward normal.
-    let walls = [
-        (
-            Vec3::X * size.x,
-            Vec3::NEG_Z * size.z,
-            Vec3::new(-hx, 0.0, hz),
-        ),
-        (
-            Vec3::X * size.x,
-            Vec3::Z * size.z,
-            Vec3::new(-hx, size.y, -hz),
-        ),
-        (Vec3::Y * size.y, Vec3::Z * size.z, Vec3::new(-hx, 0.0, -hz)),
-        (Vec3::Z * size.z, Vec3::Y * size.y, Vec3::new(hx, 0.0, -hz)),
-        (Vec3::X * size.x, Vec3::Y * size.y, Vec3::new(-hx, 0.0, -hz)),
-        (Vec3::Y * size.y, Vec3::X * size.x, Vec3::new(-hx, 0.0, hz)),
-    ];
-    for (i, (u, v, origin)) in walls.into_iter().enumerate() {
-        let normal = u.cross(v).normalize();
+    for (i, surface) in room::surfaces(view.room_size).iter().enumerate() {
+        // The unit quad's x and y run along the surface's two edges.
         let model = Mat4::from_cols(
-            u.extend(0.0),
-            v.extend(0.0),
-            normal.extend(0.0),
-            origin.extend(1.0),
+            surface.u.extend(0.0),
+            surface.v.extend(0.0),
+            surface.normal().extend(0.0),
+            surface.corner.extend(1.0),
         );
         let (kind, specular, shininess) = if i == 0 {
             (Kind::Wood, 0.35, 40.0)

@@ -10,11 +10,13 @@
 mod camera;
 mod gpu;
 mod instances;
+mod irradiance;
 mod lighting;
 mod mesh;
 mod offscreen;
 mod paint;
 mod renderer;
+mod room;
 mod shadow;
 mod snapshot;
 mod tumbler_mesh;

@@ -1,7 +1,8 @@
 //! The CPU's half of the lighting model: how a point light falls off, and
 //! the light the room's six surfaces send back each frame, which the
-//! shader then gathers at every point (`indirect_light` in scene.wgsl).
+//! irradiance volume then gathers (see irradiance.rs).
 
+use crate::room;
 use crate::view::{PointLight, SceneView};
 use glam::Vec3;
 
@@ -19,83 +20,24 @@ const FLOOR_MEAN_SHADE: f32 = 0.84;
 /// Samples per side of a surface when averaging the light on it.
 const SAMPLES: usize = 12;
 
-/// One surface of the room: a corner and the two edges from it, and its
-/// inward normal.
-struct Panel {
-    corner: Vec3,
-    u: Vec3,
-    v: Vec3,
-    normal: Vec3,
-}
-
-/// The room's surfaces in the order of `SceneView::room_colors`: floor,
-/// ceiling, left, right, back, front.
-fn panels(size: Vec3) -> [Panel; 6] {
-    let (hx, hz) = (0.5 * size.x, 0.5 * size.z);
-    let panel = |corner: Vec3, u: Vec3, v: Vec3, normal: Vec3| Panel {
-        corner,
-        u,
-        v,
-        normal,
-    };
-    [
-        panel(
-            Vec3::new(-hx, 0.0, -hz),
-            Vec3::X * size.x,
-            Vec3::Z * size.z,
-            Vec3::Y,
-        ),
-        panel(
-            Vec3::new(-hx, size.y, -hz),
-            Vec3::X * size.x,
-            Vec3::Z * size.z,
-            Vec3::NEG_Y,
-        ),
-        panel(
-            Vec3::new(-hx, 0.0, -hz),
-            Vec3::Y * size.y,
-            Vec3::Z * size.z,
-            Vec3::X,
-        ),
-        panel(
-            Vec3::new(hx, 0.0, -hz),
-            Vec3::Y * size.y,
-            Vec3::Z * size.z,
-            Vec3::NEG_X,
-        ),
-        panel(
-            Vec3::new(-hx, 0.0, -hz),
-            Vec3::X * size.x,
-            Vec3::Y * size.y,
-            Vec3::Z,
-        ),
-        panel(
-            Vec3::new(-hx, 0.0, hz),
-            Vec3::X * size.x,
-            Vec3::Y * size.y,
-            Vec3::NEG_Z,
-        ),
-    ]
-}
-
 /// The light each surface of the room sends back, in its own colour: the
 /// direct light falling on it from `lights` (ceiling light and fireball),
 /// averaged over the surface, times its colour. Shadows are left out: at
 /// this scale a ball's shadow changes a wall's average by little.
 pub fn wall_light(view: &SceneView, lights: &[PointLight]) -> [Vec3; 6] {
-    let panels = panels(view.room_size);
     let mut out = [Vec3::ZERO; 6];
-    for (i, panel) in panels.iter().enumerate() {
+    for (i, surface) in room::surfaces(view.room_size).iter().enumerate() {
+        let normal = surface.normal();
         let mut sum = Vec3::ZERO;
         for a in 0..SAMPLES {
             for b in 0..SAMPLES {
                 let s = (a as f32 + 0.5) / SAMPLES as f32;
                 let t = (b as f32 + 0.5) / SAMPLES as f32;
-                let point = panel.corner + panel.u * s + panel.v * t;
+                let point = surface.at(s, t);
                 for light in lights {
                     let to_light = light.position - point;
                     let distance = to_light.length().max(1e-3);
-                    let cosine = panel.normal.dot(to_light / distance).max(0.0);
+                    let cosine = normal.dot(to_light / distance).max(0.0);
                     sum += attenuated(light.color, light.falloff, distance) * cosine;
                 }
             }
@@ -114,7 +56,7 @@ pub fn wall_light(view: &SceneView, lights: &[PointLight]) -> [Vec3; 6] {
 /// fireball's own bounce (`fireball`) comes on top of it.
 pub fn bounce(view: &SceneView, ceiling: PointLight, fireball: Option<PointLight>) -> [Vec3; 6] {
     let from_ceiling = wall_light(view, &[ceiling]);
-    let areas = panels(view.room_size).map(|p| p.u.cross(p.v).length());
+    let areas = room::surfaces(view.room_size).map(|s| s.area());
     let mean = from_ceiling
         .iter()
         .zip(areas)

@@ -1,14 +1,19 @@
 //! What the shaders read besides vertices: the layouts of their bind
 //! groups, and the scene's group (the frame's globals, the light's shadow
-//! faces and the tumblers' paint).
+//! faces, the tumblers' paint and the irradiance volume).
 
 use crate::gpu::Gpu;
+use crate::irradiance::{DIRECTIONS, MAX_PROBES};
 use crate::shadow::ShadowCube;
+
+/// The irradiance volume's texels: light, smoothly filtered.
+pub(super) const IRRADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// The bind group layouts the pipelines are built on.
 pub(super) struct Layouts {
     /// The lit scene: globals, the shadow faces with their comparison
-    /// sampler, and the paint texture with its sampler.
+    /// sampler, the paint texture with its sampler, and the irradiance
+    /// volume with its sampler.
     pub scene: wgpu::BindGroupLayout,
     /// One shadow face: its view-projection and the light.
     pub face: wgpu::BindGroupLayout,
@@ -39,22 +44,19 @@ impl Layouts {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
                     count: None,
                 },
+                filterable_texture_entry(3),
+                filtering_sampler_entry(4),
                 wgpu::BindGroupLayoutEntry {
-                    binding: 3,
+                    binding: 5,
                     visibility: wgpu::ShaderStages::FRAGMENT,
                     ty: wgpu::BindingType::Texture {
                         sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
+                        view_dimension: wgpu::TextureViewDimension::D3,
                         multisampled: false,
                     },
                     count: None,
                 },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 4,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
+                filtering_sampler_entry(6),
             ],
         });
         let face = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -77,12 +79,7 @@ impl Layouts {
                 uniform_entry(1, wgpu::ShaderStages::FRAGMENT),
                 filterable_texture_entry(2),
                 filterable_texture_entry(3),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 4,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
+                filtering_sampler_entry(4),
             ],
         });
         Layouts {
@@ -93,14 +90,36 @@ impl Layouts {
     }
 }
 
+/// The texture of the irradiance volume: `MAX_PROBES` texels along each
+/// axis for each direction, the directions' slabs one after another along
+/// z. A room with fewer probes fills the low corner of each slab.
+pub(super) fn irradiance_texture(device: &wgpu::Device) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("irradiance volume"),
+        size: wgpu::Extent3d {
+            width: MAX_PROBES,
+            height: MAX_PROBES,
+            depth_or_array_layers: MAX_PROBES * DIRECTIONS.len() as u32,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D3,
+        format: IRRADIANCE_FORMAT,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    })
+}
+
 /// The lit scene's bind group (see [`Layouts::scene`]): `globals`, the
-/// faces of `shadow_cube` and the tumblers' `paint`, uploaded here.
+/// faces of `shadow_cube`, the tumblers' `paint` (uploaded here) and the
+/// `irradiance` volume.
 pub(super) fn scene_bind_group(
     gpu: &Gpu,
     layout: &wgpu::BindGroupLayout,
     globals: &wgpu::Buffer,
     shadow_cube: &ShadowCube,
     paint: &image::RgbaImage,
+    irradiance: &wgpu::Texture,
 ) -> wgpu::BindGroup {
     let device = &gpu.device;
     let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
@@ -114,6 +133,14 @@ pub(super) fn scene_bind_group(
     let paint_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some("paint"),
         address_mode_u: wgpu::AddressMode::Repeat,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        ..Default::default()
+    });
+    // Clamped to the probes in use by the shader, not by the sampler.
+    let irradiance_view = irradiance.create_view(&Default::default());
+    let irradiance_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("irradiance"),
         mag_filter: wgpu::FilterMode::Linear,
         min_filter: wgpu::FilterMode::Linear,
         ..Default::default()
@@ -142,12 +169,20 @@ pub(super) fn scene_bind_group(
                 binding: 4,
                 resource: wgpu::BindingResource::Sampler(&paint_sampler),
             },
+            wgpu::BindGroupEntry {
+                binding: 5,
+                resource: wgpu::BindingResource::TextureView(&irradiance_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 6,
+                resource: wgpu::BindingResource::Sampler(&irradiance_sampler),
+            },
         ],
     })
 }
 
 /// A 2D colour texture at `binding` that fragments sample smoothly.
-fn filterable_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+pub(super) fn filterable_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
@@ -156,6 +191,16 @@ fn filterable_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled: false,
         },
+        count: None,
+    }
+}
+
+/// A sampler at `binding` that filters smoothly, for fragments.
+pub(super) fn filtering_sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::FRAGMENT,
+        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
         count: None,
     }
 }

@@ -1,6 +1,6 @@
 //! The bloom pass (L1): the HDR frame filtered down a chain of half-size
-//! images and back up (see bloom.wgsl); tone mapping adds the top of the
-//! chain to the picture.
+//! images and back up (see bloom.wgsl); tone mapping adds the top two
+//! levels of the chain to the picture.
 
 use super::HDR_FORMAT;
 use super::bindings::uniform_entry;
@@ -126,8 +126,11 @@ struct Step {
 pub(super) struct BloomChain {
     down: Vec<Step>,
     up: Vec<Step>,
-    /// The top of the chain, which tone mapping reads.
-    pub top: wgpu::TextureView,
+    /// The whole chain, whose top two levels tone mapping reads: the way
+    /// up stops at the second, whose sum tone mapping reads straight from
+    /// the smaller image. Spreading it into the top level, the largest,
+    /// would be the chain's costliest step.
+    pub glow: wgpu::TextureView,
     /// How many levels the glow sums.
     pub levels: u32,
 }
@@ -202,14 +205,14 @@ impl BloomChain {
         for i in 1..levels {
             down.push(step(level(i), &level(i - 1), size_of(i - 1)));
         }
-        let up = (1..levels)
+        let up = (2..levels)
             .rev()
             .map(|i| step(level(i - 1), &level(i), size_of(i)))
             .collect();
         BloomChain {
             down,
             up,
-            top: level(0),
+            glow: texture.create_view(&Default::default()),
             levels,
         }
     }

@@ -16,6 +16,7 @@
 use crate::camera::Camera;
 use crate::gpu::{Gpu, RenderError};
 use crate::instances::{self, BallInstance, Instance, InstanceBuffer, Ranges};
+use crate::irradiance::{DIRECTIONS, IrradianceVolume, MAX_PROBES};
 use crate::lighting;
 use crate::mesh::{GpuMesh, MeshData};
 use crate::shadow::{self, ShadowCube};
@@ -24,6 +25,7 @@ use bindings::Layouts;
 use bloom::BloomPipelines;
 use bytemuck::{Pod, Zeroable};
 use cursor::Cursor;
+use glam::UVec3;
 use occlusion::OcclusionPipeline;
 use pipelines::Pipelines;
 use std::time::{Duration, Instant};
@@ -110,7 +112,7 @@ struct Globals {
     fireball_color: [f32; 4],
     fireball_falloff: [f32; 4],
     room: [f32; 4],
-    wall_light: [[f32; 4]; 6],
+    irradiance_probes: [f32; 4],
 }
 
 fn falloff(light: PointLight) -> [f32; 4] {
@@ -135,6 +137,7 @@ pub struct Renderer {
     tonemap_params: wgpu::Buffer,
     scene_bind_group: wgpu::BindGroup,
     shadow_cube: ShadowCube,
+    irradiance: Irradiance,
     sphere: GpuMesh,
     quad: GpuMesh,
     cube: GpuMesh,
@@ -173,8 +176,19 @@ impl Renderer {
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let shadow_cube = ShadowCube::new(device, settings.shadow_size, &layouts.face);
-        let scene_bind_group =
-            bindings::scene_bind_group(gpu, &layouts.scene, &globals, &shadow_cube, paint);
+        let irradiance = Irradiance {
+            texture: bindings::irradiance_texture(device),
+            volume: None,
+            texels: Vec::new(),
+        };
+        let scene_bind_group = bindings::scene_bind_group(
+            gpu,
+            &layouts.scene,
+            &globals,
+            &shadow_cube,
+            paint,
+            &irradiance.texture,
+        );
         Renderer {
             settings,
             output_format,
@@ -195,6 +209,7 @@ impl Renderer {
             tonemap_params,
             scene_bind_group,
             shadow_cube,
+            irradiance,
             sphere: GpuMesh::upload(device, "sphere", &MeshData::sphere(16, 24)),
             quad: GpuMesh::upload(device, "quad", &MeshData::quad()),
             cube: GpuMesh::upload(device, "cube", &MeshData::cube()),
@@ -245,7 +260,16 @@ impl Renderer {
         let faces = shadow::face_view_projections(view.light.position);
         self.shadow_cube
             .update(&gpu.queue, &faces, view.light.position);
-        let globals = self.globals(view, camera, width as f32 / height as f32);
+        let probes = if view.light.indirect {
+            let ceiling = view.light.point();
+            let fireball = view.fireball_light.filter(|_| view.light.fireball_light);
+            let surface_light = lighting::bounce(view, ceiling, fireball);
+            self.irradiance
+                .update(&gpu.queue, view.room_size, &surface_light)
+        } else {
+            UVec3::ZERO
+        };
+        let globals = self.globals(view, camera, width as f32 / height as f32, probes);
         gpu.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
 
@@ -281,7 +305,7 @@ impl Renderer {
             self.settings.exposure,
             glow,
             flag(view.light.occlusion),
-            0.0,
+            flag(targets.bloom.levels > 1),
         ];
         gpu.queue
             .write_buffer(&self.tonemap_params, 0, bytemuck::cast_slice(&params));
@@ -294,16 +318,12 @@ impl Renderer {
         })
     }
 
-    /// The scene shader's globals for `view` seen by `camera`.
-    fn globals(&self, view: &SceneView, camera: &Camera, aspect: f32) -> Globals {
+    /// The scene shader's globals for `view` seen by `camera`, with the
+    /// irradiance volume's `probes` along each axis (none: no bounce).
+    fn globals(&self, view: &SceneView, camera: &Camera, aspect: f32, probes: UVec3) -> Globals {
         let light = &view.light;
         let ceiling = light.point();
         let fireball = view.fireball_light.filter(|_| light.fireball_light);
-        let wall_light = if light.indirect {
-            lighting::bounce(view, ceiling, fireball)
-        } else {
-            [glam::Vec3::ZERO; 6]
-        };
         let half = view.room_size * glam::Vec3::new(0.5, 1.0, 0.5);
         Globals {
             view_proj: camera.view_projection(aspect).to_cols_array_2d(),
@@ -323,7 +343,7 @@ impl Renderer {
             fireball_color: fireball.map_or([0.0; 4], |f| f.color.extend(0.0).to_array()),
             fireball_falloff: fireball.map_or([1.0, 0.0, 0.0, 0.0], falloff),
             room: half.extend(flag(light.indirect)).to_array(),
-            wall_light: wall_light.map(|w| w.extend(0.0).to_array()),
+            irradiance_probes: probes.as_vec3().extend(MAX_PROBES as f32).to_array(),
         }
     }
 
@@ -464,6 +484,67 @@ impl Renderer {
             occlusion: &self.occlusion,
         };
         self.targets = Some(Targets::new(&gpu.device, (width, height), &kit));
+    }
+}
+
+/// The irradiance volume (see irradiance.rs) and its texture.
+struct Irradiance {
+    texture: wgpu::Texture,
+    /// The probes of the room last drawn.
+    volume: Option<IrradianceVolume>,
+    /// Reused for each frame's upload.
+    texels: Vec<[u16; 4]>,
+}
+
+impl Irradiance {
+    /// Gathers the light the room of `room_size` bounces from its surfaces'
+    /// `surface_light` at each probe into the texture, working the probes
+    /// out again if the room changed; returns the probes along each axis.
+    fn update(
+        &mut self,
+        queue: &wgpu::Queue,
+        room_size: glam::Vec3,
+        surface_light: &[glam::Vec3; 6],
+    ) -> UVec3 {
+        let volume = match &self.volume {
+            Some(v) if v.room_size() == room_size => v,
+            _ => self.volume.insert(IrradianceVolume::new(room_size)),
+        };
+        self.texels.clear();
+        self.texels
+            .extend(volume.gather(surface_light).map(|light| {
+                let [r, g, b] = light.to_array().map(|c| half::f16::from_f32(c).to_bits());
+                [r, g, b, half::f16::ONE.to_bits()]
+            }));
+        let counts = volume.counts();
+        let slab = counts.element_product() as usize;
+        for (k, texels) in self.texels.chunks_exact(slab).enumerate() {
+            queue.write_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &self.texture,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d {
+                        x: 0,
+                        y: 0,
+                        z: k as u32 * MAX_PROBES,
+                    },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                bytemuck::cast_slice(texels),
+                wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(counts.x * std::mem::size_of::<[u16; 4]>() as u32),
+                    rows_per_image: Some(counts.y),
+                },
+                wgpu::Extent3d {
+                    width: counts.x,
+                    height: counts.y,
+                    depth_or_array_layers: counts.z,
+                },
+            );
+        }
+        debug_assert_eq!(self.texels.len(), slab * DIRECTIONS.len());
+        counts
     }
 }
 

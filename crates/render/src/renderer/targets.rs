@@ -93,7 +93,7 @@ impl Targets {
                 },
                 wgpu::BindGroupEntry {
                     binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&bloom.top),
+                    resource: wgpu::BindingResource::TextureView(&bloom.glow),
                 },
                 wgpu::BindGroupEntry {
                     binding: 3,
