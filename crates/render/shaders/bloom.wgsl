@@ -20,22 +20,6 @@ struct Params {
 };
 @group(0) @binding(2) var<uniform> params: Params;
 
-struct ScreenOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) uv: vec2<f32>,
-};
-
-@vertex
-fn vs_screen(@builtin(vertex_index) index: u32) -> ScreenOut {
-    // One triangle that covers the target.
-    let x = f32((index << 1u) & 2u);
-    let y = f32(index & 2u);
-    var out: ScreenOut;
-    out.clip = vec4<f32>(x * 2.0 - 1.0, y * 2.0 - 1.0, 0.0, 1.0);
-    out.uv = vec2<f32>(x, 1.0 - y);
-    return out;
-}
-
 fn tap(uv: vec2<f32>, offset: vec2<f32>) -> vec3<f32> {
     return textureSampleLevel(source, source_sampler, uv + offset * params.values.xy, 0.0).rgb;
 }

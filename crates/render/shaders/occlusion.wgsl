@@ -31,13 +31,6 @@ const SAMPLES: i32 = 8;
 const TAU: f32 = 6.283185307;
 const GOLDEN_ANGLE: f32 = 2.399963230;
 
-@vertex
-fn vs_screen(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
-    let x = f32((index << 1u) & 2u) * 2.0 - 1.0;
-    let y = f32(index & 2u) * 2.0 - 1.0;
-    return vec4<f32>(x, y, 0.0, 1.0);
-}
-
 fn frame_size() -> vec2<i32> {
     return vec2<i32>(params.settings.yz);
 }

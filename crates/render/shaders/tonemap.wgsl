@@ -15,14 +15,6 @@ struct Params {
 @group(0) @binding(3) var openness: texture_2d<f32>;
 @group(0) @binding(4) var smooth_sampler: sampler;
 
-@vertex
-fn vs_fullscreen(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
-    // One triangle that covers the screen.
-    let x = f32((index << 1u) & 2u) * 2.0 - 1.0;
-    let y = f32(index & 2u) * 2.0 - 1.0;
-    return vec4<f32>(x, y, 0.0, 1.0);
-}
-
 // Narkowicz's fit of the ACES filmic curve.
 fn aces(x: vec3<f32>) -> vec3<f32> {
     let a = 2.51;

@@ -44,7 +44,7 @@ impl Layouts {
                     ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
                     count: None,
                 },
-                filterable_texture_entry(3),
+                texture_entry(3, true),
                 filtering_sampler_entry(4),
                 wgpu::BindGroupLayoutEntry {
                     binding: 5,
@@ -66,19 +66,10 @@ impl Layouts {
         let tonemap = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("tonemap"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                texture_entry(0, false),
                 uniform_entry(1, wgpu::ShaderStages::FRAGMENT),
-                filterable_texture_entry(2),
-                filterable_texture_entry(3),
+                texture_entry(2, true),
+                texture_entry(3, true),
                 filtering_sampler_entry(4),
             ],
         });
@@ -181,13 +172,14 @@ pub(super) fn scene_bind_group(
     })
 }
 
-/// A 2D colour texture at `binding` that fragments sample smoothly.
-pub(super) fn filterable_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+/// A 2D colour texture at `binding` for fragments, sampled smoothly if
+/// `filterable`, else read texel by texel.
+pub(super) fn texture_entry(binding: u32, filterable: bool) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
         ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: true },
+            sample_type: wgpu::TextureSampleType::Float { filterable },
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled: false,
         },

@@ -3,7 +3,8 @@
 //! levels of the chain to the picture.
 
 use super::HDR_FORMAT;
-use super::bindings::uniform_entry;
+use super::bindings::{filtering_sampler_entry, texture_entry, uniform_entry};
+use super::pipelines::{screen_pipeline, screen_shader};
 use crate::view::Bloom;
 
 /// Most levels of the chain: the smallest is 1/64 of the frame, a glow
@@ -27,63 +28,33 @@ pub(super) struct BloomPipelines {
 
 impl BloomPipelines {
     pub fn new(device: &wgpu::Device) -> BloomPipelines {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("bloom.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/bloom.wgsl").into()),
-        });
+        let shader = screen_shader(
+            device,
+            "bloom.wgsl",
+            include_str!("../../shaders/bloom.wgsl"),
+        );
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("bloom"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
+                texture_entry(0, true),
+                filtering_sampler_entry(1),
                 uniform_entry(2, wgpu::ShaderStages::FRAGMENT),
             ],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("bloom"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
         let pipeline = |entry: &str, blend: Option<wgpu::BlendState>| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(entry),
-                layout: Some(&pipeline_layout),
-                vertex: wgpu::VertexState {
-                    module: &shader,
-                    entry_point: Some("vs_screen"),
-                    compilation_options: Default::default(),
-                    buffers: &[],
-                },
-                primitive: Default::default(),
-                depth_stencil: None,
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &shader,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    targets: &[Some(wgpu::ColorTargetState {
-                        format: HDR_FORMAT,
-                        blend,
-                        write_mask: wgpu::ColorWrites::ALL,
-                    })],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            let target = wgpu::ColorTargetState {
+                format: HDR_FORMAT,
+                blend,
+                write_mask: wgpu::ColorWrites::ALL,
+            };
+            screen_pipeline(
+                device,
+                entry,
+                &layout,
+                &shader,
+                ("vs_screen", entry),
+                target,
+            )
         };
         let add = wgpu::BlendComponent {
             src_factor: wgpu::BlendFactor::One,

@@ -45,7 +45,7 @@ impl Cursor {
             &layout,
             &shader,
             ("vs_cursor", "fs_cursor"),
-            output_format,
+            output_format.into(),
         );
         Cursor {
             pipeline,

@@ -1,8 +1,10 @@
 //! The contact occlusion pass (L4): how open each visible point is to the
-//! room around it, from the surfaces the scene pass saw, at half the frame's resolution
-//! (see occlusion.wgsl); tone mapping darkens the picture by it.
+//! room around it, from the surfaces the scene pass saw, at half the
+//! frame's resolution (see occlusion.wgsl); tone mapping darkens the
+//! picture by it.
 
-use super::bindings::uniform_entry;
+use super::bindings::{texture_entry, uniform_entry};
+use super::pipelines::{screen_pipeline, screen_shader};
 use crate::camera::Camera;
 use bytemuck::{Pod, Zeroable};
 
@@ -35,52 +37,26 @@ pub(super) struct OcclusionPipeline {
 
 impl OcclusionPipeline {
     pub fn new(device: &wgpu::Device) -> OcclusionPipeline {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("occlusion.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/occlusion.wgsl").into()),
-        });
+        let shader = screen_shader(
+            device,
+            "occlusion.wgsl",
+            include_str!("../../shaders/occlusion.wgsl"),
+        );
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("occlusion"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                texture_entry(0, false),
                 uniform_entry(1, wgpu::ShaderStages::FRAGMENT),
             ],
         });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("occlusion"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("occlusion"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_screen"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_occlusion"),
-                compilation_options: Default::default(),
-                targets: &[Some(OCCLUSION_FORMAT.into())],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = screen_pipeline(
+            device,
+            "occlusion",
+            &layout,
+            &shader,
+            ("vs_screen", "fs_occlusion"),
+            OCCLUSION_FORMAT.into(),
+        );
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("occlusion"),
             size: std::mem::size_of::<Params>() as u64,

@@ -39,10 +39,11 @@ impl Pipelines {
             label: Some("scene.wgsl"),
             source: wgpu::ShaderSource::Wgsl(scene_shader(settings.early_ball_depth).into()),
         });
-        let tonemap_shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("tonemap.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/tonemap.wgsl").into()),
-        });
+        let tonemap_shader = screen_shader(
+            device,
+            "tonemap.wgsl",
+            include_str!("../../shaders/tonemap.wgsl"),
+        );
 
         let scene_pipeline_layout =
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -211,8 +212,8 @@ impl Pipelines {
             "tonemap",
             &layouts.tonemap,
             &tonemap_shader,
-            ("vs_fullscreen", "fs_tonemap"),
-            output_format,
+            ("vs_screen", "fs_tonemap"),
+            output_format.into(),
         );
 
         Pipelines {
@@ -249,15 +250,29 @@ fn scene_targets(blend: Option<wgpu::BlendState>) -> [Option<wgpu::ColorTargetSt
     ]
 }
 
-/// A pipeline that draws straight into the output, in screen space: no
-/// vertex buffers, no depth, one bind group.
+/// The shader of a pass over whole images: `source` after the shared
+/// vertex shader that covers the target (screen.wgsl's `vs_screen`).
+pub(super) fn screen_shader(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+) -> wgpu::ShaderModule {
+    let screen = include_str!("../../shaders/screen.wgsl");
+    device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(format!("{screen}\n{source}").into()),
+    })
+}
+
+/// A pipeline that draws in screen space into one `target`: no vertex
+/// buffers, no depth, one bind group.
 pub(super) fn screen_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: &wgpu::BindGroupLayout,
     shader: &wgpu::ShaderModule,
     (vertex, fragment): (&str, &str),
-    output_format: wgpu::TextureFormat,
+    target: wgpu::ColorTargetState,
 ) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
@@ -280,7 +295,7 @@ pub(super) fn screen_pipeline(
             module: shader,
             entry_point: Some(fragment),
             compilation_options: Default::default(),
-            targets: &[Some(output_format.into())],
+            targets: &[Some(target)],
         }),
         multiview_mask: None,
         cache: None,
