@@ -191,6 +191,10 @@ pub enum Command {
     /// Simulate a scene to a moment and write that frame to a PNG, with the
     /// renderer the window uses, without a window.
     Render(RenderArgs),
+    /// Simulate a scene and write its frames as a clip: an animated GIF, an
+    /// MP4 video or a folder of PNGs, with the renderer the window uses,
+    /// without a window.
+    Record(RecordArgs),
     /// Write the tumbler's mesh, made from the scene's six collision
     /// spheres, as a Wavefront OBJ file (the shipped assets/tumbler.obj is
     /// made this way from the default scene).
@@ -207,12 +211,48 @@ pub struct RenderArgs {
     #[arg(long, value_name = "WxH", default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),
 
+    #[command(flatten)]
+    pub frame: FrameArgs,
+
+    /// The PNG file to write.
+    #[arg(long, value_name = "FILE.png")]
+    pub out: PathBuf,
+}
+
+#[derive(Debug, Args)]
+pub struct RecordArgs {
+    /// Length of the clip, in simulated seconds (more than 0, at most 3600).
+    #[arg(long, value_name = "S", default_value_t = 3.0, value_parser = parse_clip_seconds)]
+    pub seconds: f64,
+
+    /// Frames per simulated second (1 ..= 60). A GIF keeps its delays in
+    /// hundredths of a second, so it plays 30 as 33.
+    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=60))]
+    pub fps: u32,
+
+    /// Frame size in pixels, WIDTHxHEIGHT (each 1 ..= 8192).
+    #[arg(long, value_name = "WxH", default_value = "640x360", value_parser = parse_size)]
+    pub size: (u32, u32),
+
+    #[command(flatten)]
+    pub frame: FrameArgs,
+
+    /// Where the clip goes: FILE.gif (an animated GIF), FILE.mp4 (H.264,
+    /// through the program ffmpeg) or DIR/ (numbered PNGs, the folder made
+    /// if need be).
+    #[arg(long, value_name = "FILE.gif|FILE.mp4|DIR/")]
+    pub out: PathBuf,
+}
+
+/// How the frames of `render` and `record` are drawn.
+#[derive(Debug, Args)]
+pub struct FrameArgs {
     /// Multisample anti-aliasing: 4 or 1 (off).
     #[arg(long, value_name = "N", default_value_t = 4, value_parser = parse_msaa)]
     pub msaa: u32,
 
     /// Camera position and the point it looks at: EX,EY,EZ,TX,TY,TZ in metres
-    /// (default: the whole room from high up by the front wall).
+    /// (default: the whole room from outside its front wall).
     #[arg(long, value_name = "EYE,TARGET", value_parser = parse_camera, allow_hyphen_values = true)]
     pub camera: Option<[f32; 6]>,
 
@@ -234,10 +274,6 @@ pub struct RenderArgs {
     /// Launch the fireball from the scene's spawn point at time 0.
     #[arg(long)]
     pub fireball: bool,
-
-    /// The PNG file to write.
-    #[arg(long, value_name = "FILE.png")]
-    pub out: PathBuf,
 }
 
 #[derive(Debug, Args)]
@@ -347,6 +383,20 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
     } else {
         // As written: `1e308` rather than all its 309 digits.
         Err(format!("{text} is out of range: allowed 0 ..= 1000000000"))
+    }
+}
+
+/// The length of a clip: more than nothing, at most an hour.
+fn parse_clip_seconds(text: &str) -> Result<f64, String> {
+    let seconds: f64 = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number of seconds"))?;
+    if seconds.is_finite() && seconds > 0.0 && seconds <= 3600.0 {
+        Ok(seconds)
+    } else {
+        Err(format!(
+            "{text} is out of range: allowed more than 0, at most 3600"
+        ))
     }
 }
 

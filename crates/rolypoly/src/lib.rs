@@ -5,6 +5,7 @@
 //! pieces live here so that tests and later front ends can reuse them.
 
 pub mod cli;
+pub mod record;
 pub mod render;
 pub mod scene;
 pub mod simulate;
@@ -63,7 +64,14 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Render(args)) => render::render(
             &mut world,
             scene.effects,
-            &args.effects.apply(&scene.light),
+            &args.frame.effects.apply(&scene.light),
+            scene_args.seed,
+            args,
+        ),
+        Some(Command::Record(args)) => record::record(
+            &mut world,
+            scene.effects,
+            &args.frame.effects.apply(&scene.light),
             scene_args.seed,
             args,
         ),
@@ -101,6 +109,11 @@ fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Render(args)) => {
             file_in_folder(&args.out)?;
             named_for(&args.out, "png", "frames are PNG images")
+        }
+        Some(Command::Record(args)) => {
+            // A folder of PNGs is made if need be, in a folder that is.
+            record::ClipKind::of(&args.out)?;
+            file_in_folder(&args.out)
         }
         Some(Command::MakeTumblerObj(args)) => {
             file_in_folder(&args.out)?;

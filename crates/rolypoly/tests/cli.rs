@@ -487,3 +487,187 @@ fn the_shipped_ball_pit_scene_loads_and_steps() {
     assert!(out.contains("100000 balls (100000 in play"), "{out}");
     assert!(out.contains("5 tumblers"), "{out}");
 }
+
+/// Decodes every frame of a GIF with its delay in milliseconds.
+fn gif_frames(path: &std::path::Path) -> Vec<(image::RgbaImage, u32)> {
+    use image::AnimationDecoder;
+    let file = std::io::BufReader::new(std::fs::File::open(path).expect("the GIF was written"));
+    let decoder = image::codecs::gif::GifDecoder::new(file).expect("a GIF");
+    decoder
+        .into_frames()
+        .map(|frame| {
+            let frame = frame.expect("a frame");
+            let (numer, denom) = frame.delay().numer_denom_ms();
+            (frame.into_buffer(), numer / denom)
+        })
+        .collect()
+}
+
+#[test]
+fn record_writes_a_gif_with_a_frame_per_tick_that_loops_and_moves() {
+    for (seconds, fps, frames, delay_ms) in [("0.4", "10", 4, 100), ("0.3", "20", 6, 50)] {
+        let out = scratch(&format!("clip-{fps}.gif"));
+        let _ = std::fs::remove_file(&out);
+        let output = rolypoly(&[
+            "record",
+            "--seconds",
+            seconds,
+            "--fps",
+            fps,
+            "--size",
+            "48x27",
+            "--out",
+            out.to_str().expect("UTF-8 path"),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        assert!(stdout(&output).contains(&format!("{frames} frames of 48x27")));
+        let decoded = gif_frames(&out);
+        assert_eq!(
+            decoded.len(),
+            frames,
+            "{seconds} s at {fps} frames a second"
+        );
+        for (image, delay) in &decoded {
+            assert_eq!(image.dimensions(), (48, 27));
+            assert_eq!(*delay, delay_ms);
+        }
+        // The balls fall: the last frame is not the first.
+        assert_ne!(decoded[0].0, decoded[frames - 1].0);
+        let bytes = std::fs::read(&out).expect("GIF");
+        assert!(
+            bytes.windows(11).any(|w| w == b"NETSCAPE2.0"),
+            "the GIF loops"
+        );
+    }
+}
+
+#[test]
+fn each_recorded_frame_is_the_frame_render_draws_at_its_time() {
+    for (seconds, fps) in [("0.3", 10u32), ("0.5", 4)] {
+        let folder = scratch(&format!("frames-{fps}"));
+        let _ = std::fs::remove_dir_all(&folder);
+        let folder_arg = format!("{}/", folder.to_str().expect("UTF-8 path"));
+        let output = rolypoly(&[
+            "record",
+            "--seconds",
+            seconds,
+            "--fps",
+            &fps.to_string(),
+            "--size",
+            "40x24",
+            "--fireball",
+            "--out",
+            &folder_arg,
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let mut names: Vec<_> = std::fs::read_dir(&folder)
+            .expect("the folder was made")
+            .map(|e| e.expect("entry").file_name().into_string().expect("name"))
+            .collect();
+        names.sort();
+        let count = (seconds.parse::<f64>().expect("seconds") * f64::from(fps)).round() as u32;
+        let expected: Vec<String> = (0..count).map(|k| format!("frame-{k:05}.png")).collect();
+        assert_eq!(names, expected);
+        for (k, name) in names.iter().enumerate() {
+            let time = (k as f64 / f64::from(fps)).to_string();
+            let single = scratch(&format!("frame-{fps}-{k}.png"));
+            let output = rolypoly(&[
+                "render",
+                "--time",
+                &time,
+                "--size",
+                "40x24",
+                "--fireball",
+                "--out",
+                single.to_str().expect("UTF-8 path"),
+            ]);
+            assert!(output.status.success(), "{}", stderr(&output));
+            let recorded = image::open(folder.join(name)).expect("PNG").to_rgba8();
+            let rendered = image::open(&single).expect("PNG").to_rgba8();
+            assert!(
+                recorded == rendered,
+                "{name} differs from render --time {time}"
+            );
+        }
+    }
+}
+
+#[test]
+fn record_to_mp4_goes_through_ffmpeg_and_says_so_when_it_is_missing() {
+    let out = scratch("clip.mp4");
+    let _ = std::fs::remove_file(&out);
+    let out_str = out.to_str().expect("UTF-8 path");
+    let args = [
+        "record",
+        "--seconds",
+        "0.3",
+        "--fps",
+        "10",
+        "--size",
+        "33x19",
+        "--out",
+        out_str,
+    ];
+    // No program named ffmpeg anywhere on the search path.
+    let output = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(args)
+        .env("PATH", scratch("no-programs-here"))
+        .output()
+        .expect("the rolypoly binary runs");
+    let err = assert_clean_failure(&output);
+    assert!(
+        err.contains("`ffmpeg`") && err.contains("apt-get install ffmpeg"),
+        "{err}"
+    );
+    assert!(!out.exists(), "nothing is written without ffmpeg");
+
+    let ffmpeg_here = Command::new("ffmpeg").arg("-version").output().is_ok();
+    if !ffmpeg_here {
+        // `.ci/run` installs ffmpeg; a machine without it checks the error only.
+        eprintln!("ffmpeg is not installed: the MP4 itself is not checked");
+        return;
+    }
+    let output = rolypoly(&args);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let bytes = std::fs::read(&out).expect("the MP4 was written");
+    assert_eq!(&bytes[4..8], b"ftyp", "an MP4 file");
+    // Odd sides are padded to even ones, as H.264 in 4:2:0 needs; three
+    // frames at ten a second.
+    let probe = Command::new("ffprobe")
+        .args(["-v", "error", "-count_frames", "-select_streams", "v:0"])
+        .args([
+            "-show_entries",
+            "stream=nb_read_frames,width,height,r_frame_rate",
+        ])
+        .args(["-of", "csv=p=0", out_str])
+        .output()
+        .expect("ffprobe comes with ffmpeg");
+    assert_eq!(
+        String::from_utf8_lossy(&probe.stdout).trim(),
+        "34,20,10/1,3"
+    );
+}
+
+#[test]
+fn record_refuses_unknown_clip_kinds_and_lengths_cleanly() {
+    let err = assert_clean_failure(&rolypoly(&["record", "--out", "clip.avi"]));
+    assert!(
+        err.contains("`clip.avi`") && err.contains(".gif") && err.contains(".mp4"),
+        "{err}"
+    );
+    let err = assert_clean_failure(&rolypoly(&["record", "--out", "no-such-folder/clip.gif"]));
+    assert!(
+        err.contains("the folder `no-such-folder` does not exist"),
+        "{err}"
+    );
+    for bad in [
+        ["--seconds", "0"],
+        ["--fps", "0"],
+        ["--fps", "61"],
+        ["--seconds", "nan"],
+    ] {
+        let output = rolypoly(&["record", bad[0], bad[1], "--out", "clip.gif"]);
+        assert!(!output.status.success(), "{bad:?}");
+        assert!(!stderr(&output).contains("panicked"), "{bad:?}");
+    }
+}
