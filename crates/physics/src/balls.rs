@@ -147,6 +147,18 @@ impl Balls {
         self.spin[i] = DVec3::ZERO;
     }
 
+    /// Keeps the first `len` balls.
+    pub(crate) fn truncate(&mut self, len: usize) {
+        self.position.truncate(len);
+        self.velocity.truncate(len);
+        self.spin.truncate(len);
+        self.radius.truncate(len);
+        self.mass.truncate(len);
+        self.inv_mass.truncate(len);
+        self.tint.truncate(len);
+        self.alive.truncate(len);
+    }
+
     /// Changes one ball's mass, for scenarios with unequal balls.
     pub fn set_mass(&mut self, i: usize, mass: f64) {
         self.mass[i] = mass;

@@ -19,8 +19,8 @@
 //! 7. separate any remaining overlaps (`overlaps`), then move the fireball
 //!    (`fireball_flight`).
 //!
-//! Around the step: where balls start (`spawn`) and the hand that holds a
-//! tumbler (`hand`).
+//! Around the step: where balls start (`spawn`), the hand that holds a
+//! tumbler (`hand`), and what a player changes while it runs (`live`).
 //!
 //! Everything runs in a fixed order on `f64`, so the same configuration,
 //! seed and inputs give bit-identical states (P10).
@@ -48,6 +48,7 @@ mod fireball_flight;
 mod flight;
 mod hand;
 mod impacts;
+mod live;
 mod overlaps;
 mod report;
 mod spawn;
@@ -345,8 +346,11 @@ impl World {
     /// Re-initialises the balls (I6): the placed balls back where their
     /// scene put them, the others at new random positions and velocities
     /// from the world's random sequence, every ball alive and of its
-    /// starting colour again.
+    /// starting colour again. Thrown balls are taken away.
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
+        let total = self.config.balls.total();
+        self.balls.truncate(total);
+        self.scratch.hit_wall.truncate(total);
         // New balls under old numbers: last step's impulses mean nothing now.
         for w in [&mut self.warm, &mut self.warm_next] {
             w.begin(&[], 0, 0);
