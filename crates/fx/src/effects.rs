@@ -119,15 +119,6 @@ impl Effects {
         }
     }
 
-    /// One fixed step of `world` and of the effects with it: step, hand the
-    /// step's events to the effects (and to the caller, in `events`), update.
-    pub fn step_with(&mut self, world: &mut World, events: &mut Vec<Event>) {
-        world.step();
-        world.take_events(events);
-        self.consume(events, world);
-        self.update(world.config().solver.dt, world.fireball());
-    }
-
     /// Advances everything by `dt` seconds. `fireball` is the fireball now,
     /// if it flies.
     pub fn update(&mut self, dt: f64, fireball: Option<&Fireball>) {

@@ -82,7 +82,8 @@ fn tuned_restitution_gives_the_rebound_of_e_squared() {
 fn sizes_and_counts_wait_for_a_rebuild() {
     let world = build(WorldConfig::default(), 3);
     let base = world.config().clone();
-    let changes: [(&str, fn(&mut WorldConfig)); 6] = [
+    type Change = (&'static str, fn(&mut WorldConfig));
+    let changes: [Change; 6] = [
         ("ball count", |c| c.balls.count += 1),
         ("ball radius", |c| c.balls.radius *= 1.1),
         ("ball mass", |c| c.balls.mass *= 2.0),

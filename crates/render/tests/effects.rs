@@ -17,7 +17,11 @@ fn frame(mut world: World, seconds: f64, camera: Camera) -> RgbaImage {
     let mut fx = Effects::new(EffectsConfig::default(), 1);
     let mut events = Vec::new();
     for _ in 0..(seconds / config.solver.dt).round() as usize {
-        fx.step_with(&mut world, &mut events);
+        // The program's tick: the physics step, then the effects of its events.
+        world.step();
+        world.take_events(&mut events);
+        fx.consume(&events, &world);
+        fx.update(config.solver.dt, world.fireball());
     }
     let mut snap = Snapshot::new(&config, RenderSettings::default(), 480, 270, None)
         .unwrap_or_else(|e| panic!("cannot render: {e}"));

@@ -7,8 +7,10 @@
 pub mod cli;
 pub mod record;
 pub mod render;
+pub mod sandbox;
 pub mod scene;
 pub mod simulate;
+pub mod simulation;
 pub mod trace;
 pub mod window;
 
@@ -20,6 +22,7 @@ use rolypoly_physics::World;
 
 use cli::{Cli, Command, SimulateArgs, steps_for};
 use scene::BUILTIN_ORIGIN;
+use simulation::Simulation;
 
 /// Runs the program for parsed arguments.
 pub fn run(cli: &Cli) -> anyhow::Result<()> {
@@ -27,7 +30,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
     let scene_args = &cli.scene;
     let path = scene_args.scene.as_deref();
     let scene = scene::load_scene_with(path, &scene_args.overrides())?;
-    let config = scene.world;
+    let config = scene.world.clone();
     let scene_name = match path {
         Some(path) => format!("scene `{}`", path.display()),
         None => format!("the {BUILTIN_ORIGIN}"),
@@ -39,11 +42,6 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
     match &cli.command {
         None => {
             let w = &cli.window;
-            let spheres = &world.config().tumblers.spheres;
-            let mesh = rolypoly_render::mesh_for(
-                spheres,
-                &rolypoly_physics::WorldConfig::default().tumblers.spheres,
-            )?;
             let options = window::WindowOptions {
                 size: w.window_size,
                 fullscreen: w.fullscreen,
@@ -54,25 +52,28 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
                 screenshot_dir: w.screenshot_dir.clone(),
                 move_speed: w.move_speed,
                 look_speed: w.look_speed.to_radians(),
-                light: w.effects.apply(&scene.light),
+                scene_file: path.map(Path::to_path_buf),
             };
-            window::run(world, scene.effects, mesh, options)
+            // The light's switches given as flags are settings like any other.
+            let mut scene = scene;
+            scene.light = w.effects.apply(&scene.light);
+            let name = path.map_or_else(|| "default.toml".to_owned(), |p| p.display().to_string());
+            window::run(
+                sandbox::Sandbox::with_world(world, scene, &name, scene_args.seed),
+                options,
+            )
         }
         Some(Command::Simulate(args)) => {
             simulate_command(&mut world, &scene_name, args, scene_args.seed, dt)
         }
         Some(Command::Render(args)) => render::render(
-            &mut world,
-            scene.effects,
+            &mut Simulation::new(world, scene.effects, scene_args.seed),
             &args.frame.effects.apply(&scene.light),
-            scene_args.seed,
             args,
         ),
         Some(Command::Record(args)) => record::record(
-            &mut world,
-            scene.effects,
+            &mut Simulation::new(world, scene.effects, scene_args.seed),
             &args.frame.effects.apply(&scene.light),
-            scene_args.seed,
             args,
         ),
         Some(Command::MakeTumblerObj(args)) => render::make_tumbler_obj(world.config(), args),

@@ -11,12 +11,11 @@ use anyhow::Context;
 use image::codecs::gif::{GifEncoder, Repeat};
 use image::{Delay, Frame, RgbaImage};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rolypoly_fx::{Effects, EffectsConfig};
-use rolypoly_physics::World;
 use rolypoly_render::LightConfig;
 
 use crate::cli::{RecordArgs, steps_for};
-use crate::render::{Frames, advance};
+use crate::render::Frames;
+use crate::simulation::Simulation;
 
 /// How finely the GIF encoder looks for each frame's 256 colours: 1 is
 /// the finest and slowest, 30 the coarsest. At 10 a frame of 640 x 360
@@ -57,39 +56,32 @@ impl ClipKind {
     }
 }
 
-/// Records `world` from now for `args.seconds`, `args.fps` frames a
+/// Records `sim` from now for `args.seconds`, `args.fps` frames a
 /// simulated second, into `args.out`.
-pub fn record(
-    world: &mut World,
-    effects: EffectsConfig,
-    light: &LightConfig,
-    seed: u64,
-    args: &RecordArgs,
-) -> anyhow::Result<()> {
+pub fn record(sim: &mut Simulation, light: &LightConfig, args: &RecordArgs) -> anyhow::Result<()> {
     let kind = ClipKind::of(&args.out)?;
     if kind == ClipKind::Mp4 {
         find_ffmpeg(&args.out)?;
     }
     if args.frame.fireball {
-        world.launch_fireball(None);
+        sim.world.launch_fireball(None);
     }
-    let mut fx = Effects::new(effects, seed);
-    let mut frames = Frames::new(world.config(), &args.frame, args.size)?;
+    let mut frames = Frames::new(sim.world.config(), &args.frame, args.size)?;
     let count = frame_count(args.seconds, args.fps);
     // A GIF is encoded in memory and written whole at the end, so that a
     // run that fails half way leaves no half a file.
     let mut gif = Vec::new();
     let mut clip = Clip::open(kind.clone(), &args.out, args.size, args.fps, &mut gif)?;
     let mut progress = Progress::new(count);
-    let dt = world.config().solver.dt;
+    let dt = sim.world.config().solver.dt;
     let mut steps_done = 0;
     for k in 0..count {
         // Frame k shows the moment k / fps, the same step `render --time`
         // would stop at.
         let steps = steps_for(f64::from(k) / f64::from(args.fps), dt);
-        advance(world, &mut fx, steps - steps_done);
+        sim.ticks(steps - steps_done);
         steps_done = steps;
-        let image = frames.draw(world, &fx, light)?;
+        let image = frames.draw(sim, light)?;
         clip.add(k, image)
             .with_context(|| format!("cannot write `{}`", args.out.display()))?;
         progress.advance();
@@ -106,7 +98,7 @@ pub fn record(
         "wrote {} ({count} frames of {width}x{height} at {} frames per second, t = 0 to {:.3} s, {})",
         args.out.display(),
         args.fps,
-        world.time(),
+        sim.world.time(),
         frames.describe()
     );
     Ok(())

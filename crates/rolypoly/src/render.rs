@@ -5,32 +5,20 @@ use std::path::Path;
 
 use anyhow::Context;
 use glam::Vec3;
-use rolypoly_fx::{Effects, EffectsConfig};
-use rolypoly_physics::{World, WorldConfig};
-use rolypoly_render::{Camera, LightConfig, MeshData, RenderSettings, SceneView, Snapshot};
+use rolypoly_physics::WorldConfig;
+use rolypoly_render::{Camera, LightConfig, MeshData, RenderSettings, Snapshot};
 
 use crate::cli::{FrameArgs, MakeTumblerObjArgs, RenderArgs, steps_for};
+use crate::simulation::Simulation;
 
-/// Simulates `world` and its effects to the requested time and writes that
-/// frame.
-pub fn render(
-    world: &mut World,
-    effects: EffectsConfig,
-    light: &LightConfig,
-    seed: u64,
-    args: &RenderArgs,
-) -> anyhow::Result<()> {
+/// Runs `sim` to the requested time and writes that frame.
+pub fn render(sim: &mut Simulation, light: &LightConfig, args: &RenderArgs) -> anyhow::Result<()> {
     if args.frame.fireball {
-        world.launch_fireball(None);
+        sim.world.launch_fireball(None);
     }
-    let mut fx = Effects::new(effects, seed);
-    advance(
-        world,
-        &mut fx,
-        steps_for(args.time, world.config().solver.dt),
-    );
-    let mut frames = Frames::new(world.config(), &args.frame, args.size)?;
-    let image = frames.draw(world, &fx, light)?;
+    sim.ticks(steps_for(args.time, sim.world.config().solver.dt));
+    let mut frames = Frames::new(sim.world.config(), &args.frame, args.size)?;
+    let image = frames.draw(sim, light)?;
     image
         .save_with_format(&args.out, image::ImageFormat::Png)
         .with_context(|| format!("cannot write `{}`", args.out.display()))?;
@@ -38,7 +26,7 @@ pub fn render(
     println!(
         "wrote {} ({width}x{height}, t = {:.3} s, {})",
         args.out.display(),
-        world.time(),
+        sim.world.time(),
         frames.describe()
     );
     Ok(())
@@ -84,17 +72,13 @@ impl Frames {
         })
     }
 
-    /// The frame of `world` now, with its effects `fx`, lit by `light`.
+    /// The frame of `sim` now, lit by `light`.
     pub fn draw(
         &mut self,
-        world: &World,
-        fx: &Effects,
+        sim: &Simulation,
         light: &LightConfig,
     ) -> anyhow::Result<image::RgbaImage> {
-        let view = SceneView::from_world(world, None)
-            .with_effects(fx, world)
-            .with_light(light);
-        Ok(self.snapshot.capture(&view, &self.camera)?)
+        Ok(self.snapshot.capture(&sim.view(light), &self.camera)?)
     }
 
     /// How the frames are drawn, in words, and on what.
@@ -105,15 +89,6 @@ impl Frames {
             if self.shadows { "on" } else { "off" },
             self.snapshot.gpu.describe()
         )
-    }
-}
-
-/// Steps the world and its effects together, as the window does at a fixed
-/// time step.
-pub fn advance(world: &mut World, fx: &mut Effects, steps: u64) {
-    let mut events = Vec::new();
-    for _ in 0..steps {
-        fx.step_with(world, &mut events);
     }
 }
 

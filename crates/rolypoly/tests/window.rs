@@ -148,7 +148,7 @@ fn number(v: &Value, key: &str) -> f64 {
 }
 
 #[test]
-fn a_person_flies_shoots_pauses_grabs_resets_and_screenshots() {
+fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_and_screenshots() {
     let (display, _xvfb) = start_display();
     let shots = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window-shots");
     let _ = std::fs::remove_dir_all(&shots);
@@ -309,7 +309,46 @@ fn a_person_flies_shoots_pauses_grabs_resets_and_screenshots() {
 
     // I: the balls start again.
     s.xdotool(&["key", "i"]);
-    s.expect("the balls to re-initialise", |v| v["event"] == "reset");
+    let reset = s.expect("the balls to re-initialise", |v| v["event"] == "reset");
+    let balls = number(&reset, "balls");
+
+    // Tab opens the sandbox panel; B throws a ball, then another.
+    s.xdotool(&["key", "Tab"]);
+    s.expect("the panel to open", |v| {
+        v["event"] == "panel" && v["open"] == true
+    });
+    for thrown in 1..=2 {
+        s.xdotool(&["key", "b"]);
+        let throw = s.expect("a ball thrown", |v| v["event"] == "throw");
+        assert_eq!(
+            number(&throw, "balls"),
+            balls + f64::from(thrown),
+            "{throw}"
+        );
+    }
+
+    // P pauses; each `.` runs one step and no more.
+    s.xdotool(&["key", "p"]);
+    s.expect("the pause", |v| {
+        v["event"] == "pause" && v["paused"] == true
+    });
+    let mut counts = Vec::new();
+    for _ in 0..2 {
+        s.xdotool(&["key", "period"]);
+        let stepped = s.expect("one step", |v| v["event"] == "stepped");
+        assert_eq!(number(&stepped, "steps"), 1.0, "{stepped}");
+        counts.push(number(&stepped, "step_count"));
+        s.settle();
+    }
+    assert_eq!(counts[1], counts[0] + 1.0, "{counts:?}");
+    s.xdotool(&["key", "p"]);
+    s.expect("the end of the pause", |v| {
+        v["event"] == "pause" && v["paused"] == false
+    });
+    s.xdotool(&["key", "Tab"]);
+    s.expect("the panel to close", |v| {
+        v["event"] == "panel" && v["open"] == false
+    });
 
     // F12: a PNG of the window's size appears where it says.
     s.xdotool(&["key", "F12"]);

@@ -12,7 +12,8 @@
 //!
 //! The parts, a file each: `file`, the schema a file is parsed into;
 //! `overlay`, which lays it over the defaults and notes the line of each
-//! key; `checks`, the ranges every value must lie in.
+//! key; `checks`, the ranges every value must lie in; `save`, a scene
+//! written back as a file of the keys that differ from the default.
 
 use std::collections::HashMap;
 use std::fmt;
@@ -25,10 +26,12 @@ use rolypoly_render::LightConfig;
 mod checks;
 mod file;
 mod overlay;
+mod save;
 
 use checks::{Checker, Sources};
 use file::FileScene;
 use overlay::Overlay;
+pub use save::scene_file_text;
 
 /// Where the configuration comes from when no scene file is given.
 pub const BUILTIN_ORIGIN: &str = "built-in default scene";

@@ -20,6 +20,13 @@ pub struct HudState {
     pub dropped: u64,
     pub paused: bool,
     pub grabbing: bool,
+    /// The keys' help shows.
+    pub help: bool,
+    /// Simulated seconds per real one, as the player set it.
+    pub time_scale: f64,
+    /// A line for the player (a refused throw, a saved file), and until
+    /// when it shows.
+    pub message: Option<(String, std::time::Instant)>,
     pub sim_time: f64,
     /// Simulated time per real time, smoothed: below 1 when the steps
     /// cannot keep up and the world runs in slow motion.
@@ -56,6 +63,9 @@ impl HudState {
             dropped: 0,
             paused: false,
             grabbing: false,
+            help: false,
+            time_scale: 1.0,
+            message: None,
             sim_time: 0.0,
             pace: 1.0,
             energy: VecDeque::with_capacity(ENERGY_SAMPLES),
@@ -101,11 +111,16 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 11] = [
+const KEYS: [(&str, &str); 16] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
+    ("B", "throw a ball"),
     ("hold Left Shift", "freeze time (the camera still moves)"),
+    ("P", "pause / go on"),
+    (".", "one step while paused"),
+    ("[ and ]", "slower, faster (1/16x to 4x)"),
+    ("Tab", "sandbox panel: scenes, settings, save"),
     ("G", "grab mode: drag tumblers with the left button"),
     ("I", "re-initialise the balls"),
     ("H or F1", "this help"),
@@ -145,7 +160,13 @@ impl Hud {
         let _ = self.input.on_window_event(window, event);
     }
 
-    /// Draws the HUD over the frame in `target`.
+    /// Whether a text field has the keyboard (the panel's file name).
+    pub fn typing(&self) -> bool {
+        self.context.text_edit_focused()
+    }
+
+    /// Draws the HUD over the frame in `target`, after `panel` (drawn
+    /// first, so that the HUD's windows keep out of the space it takes).
     pub fn draw(
         &mut self,
         window: &Window,
@@ -153,10 +174,12 @@ impl Hud {
         target: &wgpu::TextureView,
         size: [u32; 2],
         s: &HudState,
-        help: bool,
+        mut panel: impl FnMut(&mut egui::Ui),
     ) {
         let raw = self.input.take_egui_input(window);
-        let mut output = self.context.run_pass(raw, |ctx| {
+        let mut output = self.context.run_ui(raw, |ui| {
+            panel(ui);
+            let ctx = ui.ctx();
             egui::Window::new("rolypoly")
                 .anchor(egui::Align2::LEFT_TOP, [8.0, 8.0])
                 .resizable(false)
@@ -185,6 +208,9 @@ impl Hud {
                     if s.grabbing {
                         modes.push("GRAB MODE".to_string());
                     }
+                    if s.time_scale != 1.0 {
+                        modes.push(format!("TIME x{}", s.time_scale));
+                    }
                     if s.pace < 0.95 && !s.paused {
                         // The steps cannot keep up with real time.
                         modes.push(format!("SLOW MOTION {}", percent(s.pace)));
@@ -192,10 +218,15 @@ impl Hud {
                     if !modes.is_empty() {
                         ui.colored_label(egui::Color32::from_rgb(255, 200, 80), modes.join("  "));
                     }
+                    if let Some((message, until)) = &s.message {
+                        if std::time::Instant::now() < *until {
+                            ui.colored_label(egui::Color32::from_rgb(255, 200, 80), message);
+                        }
+                    }
                     energy_plot(ui, &s.energy);
-                    ui.small("H or F1: keys");
+                    ui.small("H or F1: keys, Tab: sandbox panel");
                 });
-            if help {
+            if s.help {
                 egui::Window::new("Keys")
                     .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
                     .resizable(false)

@@ -1,6 +1,7 @@
 //! The keys and the mouse: walking, the mouse's three modes (look, grab,
-//! free), and the keys that launch the fireball, pause, re-initialise the
-//! balls, show help and take screenshots.
+//! free), and the keys that launch the fireball, throw balls, pause, step,
+//! change the time scale, re-initialise the balls, open the panel, show
+//! help and take screenshots.
 
 use glam::{DVec3, Vec2, Vec3};
 use serde_json::json;
@@ -92,25 +93,51 @@ impl App {
             KeyCode::KeyS => self.keys.back = down,
             KeyCode::KeyA => self.keys.left = down,
             KeyCode::KeyD => self.keys.right = down,
-            KeyCode::ShiftLeft if self.paused != down => {
-                self.paused = down;
+            KeyCode::ShiftLeft => {
+                let frozen = self.sandbox.playback.frozen();
+                self.sandbox.playback.set_held(down);
+                if self.sandbox.playback.frozen() != frozen {
+                    self.log_pause();
+                }
+            }
+            _ if !down || event.repeat && code != KeyCode::Period => {}
+            KeyCode::KeyP => {
+                let paused = self.sandbox.playback.paused();
+                self.sandbox.playback.set_paused(!paused);
+                self.log_pause();
+            }
+            KeyCode::Period => {
+                self.sandbox.playback.set_paused(true);
+                self.sandbox.playback.step_once();
+            }
+            KeyCode::BracketLeft | KeyCode::BracketRight => {
+                self.sandbox
+                    .playback
+                    .shift_scale(code == KeyCode::BracketRight);
                 self.log.say(
-                    "pause",
-                    json!({ "paused": down, "sim_time": self.world.time() }),
+                    "time_scale",
+                    json!({ "scale": self.sandbox.playback.scale() }),
                 );
             }
-            KeyCode::ShiftLeft => {}
-            _ if !down || event.repeat => {}
+            KeyCode::KeyB => self.throw_ball(),
+            KeyCode::Tab => {
+                self.panel.open = !self.panel.open;
+                self.log.say("panel", json!({ "open": self.panel.open }));
+            }
             KeyCode::KeyF => {
-                if self.world.fireball().is_some() {
-                    self.world.remove_fireball();
+                if self.sandbox.sim.world.fireball().is_some() {
+                    self.sandbox.sim.world.remove_fireball();
                 } else {
                     let from = self.camera.position + self.camera.forward() * 0.6;
-                    self.world
+                    self.sandbox
+                        .sim
+                        .world
                         .launch_fireball(Some((from.as_dvec3(), self.camera.forward().as_dvec3())));
                 }
-                self.log
-                    .say("fireball", json!({ "on": self.world.fireball().is_some() }));
+                self.log.say(
+                    "fireball",
+                    json!({ "on": self.sandbox.sim.world.fireball().is_some() }),
+                );
             }
             KeyCode::KeyG => {
                 let next = if self.mode == MouseMode::Grab {
@@ -121,17 +148,8 @@ impl App {
                 self.set_mode(next);
                 self.log.say("grab_mode", json!({ "on": next == MouseMode::Grab, "tumblers_on_screen": self.tumblers_on_screen() }));
             }
-            KeyCode::KeyI => match self.world.reset_balls() {
-                Ok(()) => self.log.say(
-                    "reset",
-                    json!({ "balls": self.world.balls().len(), "sim_time": self.world.time() }),
-                ),
-                Err(e) => self.fail(
-                    event_loop,
-                    anyhow::Error::new(e).context("cannot re-initialise the balls"),
-                ),
-            },
-            KeyCode::KeyH | KeyCode::F1 => self.help = !self.help,
+            KeyCode::KeyI => self.restart(),
+            KeyCode::KeyH | KeyCode::F1 => self.hud_state.help = !self.hud_state.help,
             KeyCode::F12 => {
                 if let Err(e) = self.screenshot() {
                     // A screenshot that cannot be written is reported, and the program goes on.
@@ -173,7 +191,7 @@ impl App {
                 self.cursor = at;
                 if let Some(height) = self.drag_height {
                     if let Some(target) = self.cursor_on_plane(height) {
-                        self.world.drag_to(target);
+                        self.sandbox.sim.world.drag_to(target);
                     }
                 }
             }
@@ -202,10 +220,15 @@ impl App {
             }
             (MouseMode::Grab, ElementState::Pressed) => {
                 let (origin, dir) = self.camera.camera().ray(self.cursor, self.viewport());
-                if let Some(pick) = self.world.pick(origin.as_dvec3(), dir.as_dvec3()) {
-                    self.world.grab(pick.tumbler, pick.point);
+                if let Some(pick) = self
+                    .sandbox
+                    .sim
+                    .world
+                    .pick(origin.as_dvec3(), dir.as_dvec3())
+                {
+                    self.sandbox.sim.world.grab(pick.tumbler, pick.point);
                     self.drag_height = Some(pick.point.y);
-                    let at = self.world.tumblers()[pick.tumbler].bottom_center();
+                    let at = self.sandbox.sim.world.tumblers()[pick.tumbler].bottom_center();
                     self.log.say("grabbed", json!({ "tumbler": pick.tumbler, "at": [at.x, at.z], "point": pick.point.to_array() }));
                 }
             }
@@ -218,8 +241,10 @@ impl App {
     pub(super) fn tumblers_on_screen(&self) -> Vec<[f32; 2]> {
         let size = self.viewport();
         let view_proj = self.camera.camera().view_projection(size.x / size.y);
-        let shape = self.world.tumbler_shape();
-        self.world
+        let shape = self.sandbox.sim.world.tumbler_shape();
+        self.sandbox
+            .sim
+            .world
             .tumblers()
             .iter()
             .map(|t| {
@@ -238,9 +263,9 @@ impl App {
     }
 
     pub(super) fn release_tumbler(&mut self) {
-        if let Some(index) = self.world.grabbed() {
-            self.world.release();
-            let at = self.world.tumblers()[index].bottom_center();
+        if let Some(index) = self.sandbox.sim.world.grabbed() {
+            self.sandbox.sim.world.release();
+            let at = self.sandbox.sim.world.tumblers()[index].bottom_center();
             self.log
                 .say("released", json!({ "tumbler": index, "at": [at.x, at.z] }));
         }
@@ -254,11 +279,11 @@ impl App {
         if forward == 0 && right == 0 {
             return;
         }
-        let room = *self.world.room();
+        let room = *self.sandbox.sim.world.room();
         let margin = Vec3::splat(0.15);
         // Inside the room, or back out to where the view starts, in front
         // of its open front wall.
-        let start = Camera::overview(self.world.config().room.size.as_vec3()).eye;
+        let start = Camera::overview(self.sandbox.sim.world.config().room.size.as_vec3()).eye;
         self.camera.walk(
             forward as f32,
             right as f32,

@@ -1,8 +1,10 @@
-//! The interactive window: one frame is input -> camera and modes -> fixed
-//! physics steps (with the effects) -> render -> HUD -> present (I1-I7).
+//! The interactive window: one frame is input -> camera and modes -> the
+//! sandbox's fixed steps -> render -> panel and HUD -> present (I1-I7).
 //!
-//! This file holds the program's state and runs the frames. Opening the
-//! window is in [`open`]; what the keys and the mouse do, in [`input`].
+//! This file holds the window's state and runs the frames. Opening the
+//! window is in [`open`]; what the keys and the mouse do, in [`input`];
+//! what the panel asks for, in [`actions`]. The simulation, its settings
+//! and its playback are the [`Sandbox`]'s.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -10,24 +12,25 @@ use std::time::Instant;
 
 use anyhow::Context as _;
 use glam::Vec2;
-use rolypoly_fx::{Effects, EffectsConfig};
-use rolypoly_physics::{Event, World};
+use rolypoly_physics::SphereSpec;
 use rolypoly_render::{
-    Camera, Gpu, LightConfig, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, RenderSettings,
-    Renderer, SceneView,
+    Camera, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, RenderSettings, Renderer,
 };
 use serde_json::json;
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, EventLoop};
+use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
-use super::fixed_steps::{FixedSteps, MAX_CATCH_UP};
 use super::fly_camera::FlyCamera;
 use super::hud::{Hud, HudState};
 use super::log::EventLog;
+use super::panel::Panel;
+use crate::sandbox::{MAX_CATCH_UP, Sandbox};
 use input::{Keys, MouseMode};
 
+mod actions;
 mod input;
 mod open;
 
@@ -45,21 +48,18 @@ pub struct WindowOptions {
     /// Walking speed (m/s) and mouse-look sensitivity (radians per pixel).
     pub move_speed: f32,
     pub look_speed: f32,
-    pub light: LightConfig,
+    /// The scene file given, offered in the panel's list beside the
+    /// shipped scenes.
+    pub scene_file: Option<PathBuf>,
 }
 
-/// Opens the window on `world` and runs until it is closed.
-pub fn run(
-    world: World,
-    effects: EffectsConfig,
-    tumbler_mesh: MeshData,
-    options: WindowOptions,
-) -> anyhow::Result<()> {
+/// Opens the window on `sandbox` and runs until it is closed.
+pub fn run(sandbox: Sandbox, options: WindowOptions) -> anyhow::Result<()> {
     let event_loop = EventLoop::new().context(
         "cannot open a window: no display was found (set DISPLAY or WAYLAND_DISPLAY, \
          or use the `render` and `simulate` commands, which need none)",
     )?;
-    let mut app = App::new(world, effects, tumbler_mesh, options);
+    let mut app = App::new(sandbox, options)?;
     event_loop
         .run_app(&mut app)
         .context("the window's event loop failed")?;
@@ -80,19 +80,20 @@ struct Running {
 }
 
 struct App {
-    world: World,
-    fx: Effects,
+    sandbox: Sandbox,
     options: WindowOptions,
     log: EventLog,
+    /// The tumblers' shape the mesh was made for, the mesh and its paint.
+    tumbler_spheres: Vec<SphereSpec>,
     tumbler_mesh: MeshData,
     paint: image::RgbaImage,
+    panel: Panel,
     running: Option<Running>,
     error: Option<anyhow::Error>,
 
     camera: FlyCamera,
     mode: MouseMode,
     keys: Keys,
-    paused: bool,
     /// Our arrow cursor in grab mode (pixels), and the height of the plane a
     /// held tumbler is dragged over.
     cursor: Vec2,
@@ -100,11 +101,8 @@ struct App {
     /// Mouse look measures moves from the window's centre, where it puts the
     /// pointer back after each; false until the pointer is known to be there.
     look_settled: bool,
-    help: bool,
 
-    fixed_steps: FixedSteps,
     last_frame: Option<Instant>,
-    events: Vec<Event>,
     hud_state: HudState,
     camera_logged: Instant,
     /// The camera as last written to the event log.
@@ -113,40 +111,34 @@ struct App {
 }
 
 impl App {
-    fn new(
-        world: World,
-        effects: EffectsConfig,
-        tumbler_mesh: MeshData,
-        options: WindowOptions,
-    ) -> App {
+    fn new(sandbox: Sandbox, options: WindowOptions) -> anyhow::Result<App> {
+        let world = sandbox.world();
         let room = world.config().room.size.as_vec3();
-        let paint = rolypoly_render::tumbler_paint(&world.config().tumblers.spheres);
+        let tumbler_spheres = world.config().tumblers.spheres.clone();
+        let (tumbler_mesh, paint) = tumbler_look(&tumbler_spheres)?;
         let camera = FlyCamera::from_camera(&Camera::overview(room));
-        App {
-            fx: Effects::new(effects, options.seed),
+        Ok(App {
             log: EventLog::new(options.log_events),
             camera,
             camera_reported: camera,
             hud_state: HudState::new(options.seed, world.balls().len()),
-            world,
+            panel: Panel::new(options.scene_file.clone()),
+            sandbox,
             options,
+            tumbler_spheres,
             tumbler_mesh,
             paint,
             running: None,
             error: None,
             mode: MouseMode::Look,
             keys: Keys::default(),
-            paused: false,
             cursor: Vec2::ZERO,
             drag_height: None,
             look_settled: false,
-            help: false,
-            fixed_steps: FixedSteps::default(),
             last_frame: None,
-            events: Vec::new(),
             camera_logged: Instant::now(),
             screenshots: 0,
-        }
+        })
     }
 
     /// Stops the program with `error`, which `run` returns.
@@ -154,25 +146,26 @@ impl App {
         self.error.get_or_insert(error);
         event_loop.exit();
     }
-    /// Advances the simulation by the time since the last frame, in fixed steps.
+    /// Advances the simulation by the time since the last frame, in fixed
+    /// steps, as the playback says.
     fn simulate(&mut self, elapsed: f64) {
-        if self.paused {
-            return;
-        }
-        let dt = self.world.config().solver.dt;
         let started = Instant::now();
-        let skipped_before = self.fixed_steps.skipped();
-        let (fx, world, events) = (&mut self.fx, &mut self.world, &mut self.events);
-        let steps = self.fixed_steps.advance(
-            elapsed,
-            dt,
-            || started.elapsed(),
-            || fx.step_with(world, events),
-        );
-        self.hud_state
-            .pace(elapsed, self.fixed_steps.skipped() - skipped_before);
+        let skipped_before = self.sandbox.playback.skipped();
+        let steps = self.sandbox.frame(elapsed, || started.elapsed());
+        if !self.sandbox.playback.frozen() {
+            let simulated = elapsed * self.sandbox.playback.scale();
+            let skipped = self.sandbox.playback.skipped() - skipped_before;
+            self.hud_state.pace(simulated, skipped);
+        }
         if steps > 0 {
-            self.hud_state.step_time = started.elapsed().as_secs_f64() / steps as f64;
+            self.hud_state.step_time = started.elapsed().as_secs_f64() / f64::from(steps);
+            if self.sandbox.playback.frozen() {
+                let world = self.sandbox.world();
+                self.log.say(
+                    "stepped",
+                    json!({ "steps": steps, "step_count": world.step_count(), "sim_time": world.time() }),
+                );
+            }
         }
     }
 
@@ -192,19 +185,18 @@ impl App {
             self.log_camera();
         }
 
-        let view = SceneView::from_world(&self.world, self.world.grabbed())
-            .with_effects(&self.fx, &self.world)
-            .with_light(&self.options.light);
+        let sim = &self.sandbox.sim;
+        let view = sim.view(&self.sandbox.scene().light);
         let camera = self.camera.camera();
         self.hud_state.frame(
             elapsed,
-            &self.world,
-            &self.fx,
-            self.paused,
+            &sim.world,
+            &sim.fx,
+            self.sandbox.playback.frozen(),
             self.mode == MouseMode::Grab,
         );
+        self.hud_state.time_scale = self.sandbox.playback.scale();
         let cursor = (self.mode == MouseMode::Grab).then_some(self.cursor);
-        let help = self.help;
         let Some(r) = self.running.as_mut() else {
             return;
         };
@@ -237,16 +229,23 @@ impl App {
                 return;
             }
         }
+        let (panel, sandbox) = (&mut self.panel, &mut self.sandbox);
+        let mut action = None;
         r.hud
-            .draw(&r.window, &r.gpu, &target, [w, h], &self.hud_state, help);
+            .draw(&r.window, &r.gpu, &target, [w, h], &self.hud_state, |ui| {
+                action = panel.show(ui, sandbox);
+            });
         r.gpu.queue.present(texture);
+        if let Some(action) = action {
+            self.act(action);
+        }
     }
 
     fn log_camera(&self) {
         let p = self.camera.position;
         self.log.say(
             "camera",
-            json!({ "position": [p.x, p.y, p.z], "yaw": self.camera.yaw, "pitch": self.camera.pitch, "sim_time": self.world.time() }),
+            json!({ "position": [p.x, p.y, p.z], "yaw": self.camera.yaw, "pitch": self.camera.pitch, "sim_time": self.sandbox.world().time() }),
         );
     }
 
@@ -268,9 +267,7 @@ impl App {
             &self.paint,
         );
         let target = OffscreenTarget::new(&r.gpu, w, h)?;
-        let view = SceneView::from_world(&self.world, self.world.grabbed())
-            .with_effects(&self.fx, &self.world)
-            .with_light(&self.options.light);
+        let view = self.sandbox.sim.view(&self.sandbox.scene().light);
         target.render(&r.gpu, &mut renderer, &view, &self.camera.camera())?;
         let image = target.read(&r.gpu)?;
         self.screenshots += 1;
@@ -311,8 +308,16 @@ impl ApplicationHandler for App {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
-        if let Some(r) = self.running.as_mut() {
+        // Tab is the panel's key alone, never a move between its widgets.
+        let tab = matches!(&event, WindowEvent::KeyboardInput { event, .. }
+            if event.physical_key == PhysicalKey::Code(KeyCode::Tab));
+        if let Some(r) = self.running.as_mut().filter(|_| !tab) {
             r.hud.on_event(&r.window, &event);
+        }
+        // While the panel's file name is being typed, keys go there only.
+        let typing = self.running.as_ref().is_some_and(|r| r.hud.typing());
+        if typing && !tab && matches!(event, WindowEvent::KeyboardInput { .. }) {
+            return;
         }
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
@@ -346,4 +351,11 @@ impl ApplicationHandler for App {
             r.window.request_redraw();
         }
     }
+}
+
+/// The mesh a tumbler of `spheres` is drawn with, and its paint.
+fn tumbler_look(spheres: &[SphereSpec]) -> anyhow::Result<(MeshData, image::RgbaImage)> {
+    let designed = &rolypoly_physics::WorldConfig::default().tumblers.spheres;
+    let mesh = rolypoly_render::mesh_for(spheres, designed)?;
+    Ok((mesh, rolypoly_render::tumbler_paint(spheres)))
 }

@@ -1,0 +1,141 @@
+//! What the panel and the keys ask of the sandbox beyond a setting: load a
+//! scene, restart, throw a ball, save the settings. Where the tumblers'
+//! shape changes, the renderer is made anew with their mesh.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use serde_json::json;
+
+use super::App;
+use crate::scene::{self, Scene};
+use crate::window::panel::{PanelAction, SceneSource};
+
+/// How long a message stays on the HUD.
+const MESSAGE_SECONDS: Duration = Duration::from_secs(4);
+
+impl App {
+    pub(super) fn act(&mut self, action: PanelAction) {
+        match action {
+            PanelAction::Load(source) => self.load(&source),
+            PanelAction::Restart => self.restart(),
+            PanelAction::Save(path) => self.save(&path),
+        }
+    }
+
+    /// Shows `message` on the HUD and in the panel for a few seconds.
+    pub(super) fn tell(&mut self, message: String) {
+        self.log.say("message", json!({ "text": message }));
+        self.panel.message = Some(message.clone());
+        self.hud_state.message = Some((message, Instant::now() + MESSAGE_SECONDS));
+    }
+
+    pub(super) fn log_pause(&self) {
+        self.log.say(
+            "pause",
+            json!({ "paused": self.sandbox.playback.frozen(), "sim_time": self.sandbox.world().time() }),
+        );
+    }
+
+    /// I: the balls anew, or the world anew where settings wait for it.
+    pub(super) fn restart(&mut self) {
+        self.release_tumbler();
+        match self.sandbox.restart() {
+            Ok(()) => {
+                self.refresh_tumbler_look();
+                self.log.say(
+                    "reset",
+                    json!({ "balls": self.sandbox.world().balls().len(), "sim_time": self.sandbox.world().time() }),
+                );
+            }
+            Err(e) => self.tell(format!("cannot restart: {e}")),
+        }
+    }
+
+    /// B: a ball from just in front of the eye, along the view.
+    pub(super) fn throw_ball(&mut self) {
+        let forward = self.camera.forward();
+        let from = (self.camera.position + forward * 0.4).as_dvec3();
+        match self.sandbox.throw(from, forward.as_dvec3()) {
+            Ok(ball) => self.log.say(
+                "throw",
+                json!({ "ball": ball, "balls": self.sandbox.world().balls().len() }),
+            ),
+            Err(refused) => self.tell(refused.to_string()),
+        }
+    }
+
+    fn load(&mut self, source: &SceneSource) {
+        let loaded = match source {
+            SceneSource::Shipped(i) => {
+                let shipped = crate::sandbox::SHIPPED_SCENES[*i];
+                scene::parse_scene(shipped.text, shipped.name)
+            }
+            SceneSource::File(path) => scene::load_scene(Some(path)),
+        };
+        let name = source.label();
+        let built = loaded
+            .map_err(anyhow::Error::from)
+            .and_then(|scene: Scene| Ok(self.sandbox.load(scene, &name)?));
+        match built {
+            Ok(()) => {
+                self.release_tumbler();
+                self.refresh_tumbler_look();
+                self.panel.message = None;
+                self.log.say(
+                    "scene",
+                    json!({ "name": name, "balls": self.sandbox.world().balls().len() }),
+                );
+            }
+            Err(e) => self.tell(format!("cannot load {name}: {e:#}")),
+        }
+    }
+
+    /// Writes the settings as a scene file, never over an existing file.
+    fn save(&mut self, path: &Path) {
+        let said = if path.as_os_str().is_empty() {
+            "give the file a name to save the settings".to_owned()
+        } else if path.exists() {
+            format!("`{}` exists already: choose another name", path.display())
+        } else {
+            let header = format!(
+                "Settings saved from the sandbox panel, starting from {} (seed {}).\n\nRun it with:\n\n    rolypoly --scene {}",
+                self.sandbox.scene_name(),
+                self.sandbox.seed(),
+                path.display()
+            );
+            let text = scene::scene_file_text(self.sandbox.scene(), &header);
+            match std::fs::write(path, text) {
+                Ok(()) => format!("saved {}", path.display()),
+                Err(e) => format!("cannot write `{}`: {e}", path.display()),
+            }
+        };
+        self.tell(said);
+    }
+
+    /// After a world built anew: its tumblers' mesh, and a renderer for it
+    /// if the shape changed.
+    fn refresh_tumbler_look(&mut self) {
+        let spheres = &self.sandbox.world().config().tumblers.spheres;
+        if *spheres == self.tumbler_spheres {
+            return;
+        }
+        match super::tumbler_look(spheres) {
+            Ok((mesh, paint)) => {
+                self.tumbler_spheres = spheres.clone();
+                self.tumbler_mesh = mesh;
+                self.paint = paint;
+                if let Some(r) = self.running.as_mut() {
+                    r.renderer = rolypoly_render::Renderer::new(
+                        &r.gpu,
+                        r.renderer.settings(),
+                        r.config.format,
+                        &self.tumbler_mesh,
+                        &self.paint,
+                    );
+                }
+            }
+            Err(e) => self.tell(format!("cannot draw the new tumblers: {e:#}")),
+        }
+    }
+}

@@ -1,0 +1,333 @@
+//! The sandbox panel (Tab): the scene list, the scene's constants applied
+//! as they change, pause, single steps and the time scale, the throw
+//! speed, and saving the settings as a scene file. It only draws the
+//! sandbox and hands it what the player did; the window carries out the
+//! actions that need more than the sandbox (loading a scene rebuilds the
+//! renderer's tumbler mesh).
+
+use std::ops::RangeInclusive;
+use std::path::PathBuf;
+
+use crate::sandbox::{SHIPPED_SCENES, Sandbox, THROW_SPEEDS, TIME_SCALES};
+use crate::scene::Scene;
+
+/// Widest the panel gets (points), and the share of a narrow window it may
+/// take; a window too small for even [`MIN_PANEL`] shows no panel, and
+/// the HUD says so.
+const PANEL_WIDTH: f32 = 300.0;
+const PANEL_SHARE: f32 = 0.45;
+pub const MIN_PANEL: [f32; 2] = [180.0, 160.0];
+
+/// A scene the list offers.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SceneSource {
+    /// One of [`SHIPPED_SCENES`].
+    Shipped(usize),
+    /// The file given with `--scene`, read again when chosen.
+    File(PathBuf),
+}
+
+impl SceneSource {
+    pub fn label(&self) -> String {
+        match self {
+            SceneSource::Shipped(i) => SHIPPED_SCENES[*i].name.to_owned(),
+            SceneSource::File(path) => path.display().to_string(),
+        }
+    }
+}
+
+/// What the panel asks of the window.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PanelAction {
+    Load(SceneSource),
+    Restart,
+    Save(PathBuf),
+}
+
+pub struct Panel {
+    pub open: bool,
+    /// The list: the shipped scenes, and the file given, if any.
+    pub scenes: Vec<SceneSource>,
+    save_path: String,
+    /// What the last action or refused change said.
+    pub message: Option<String>,
+}
+
+impl Panel {
+    pub fn new(scene_file: Option<PathBuf>) -> Panel {
+        let mut scenes: Vec<SceneSource> = (0..SHIPPED_SCENES.len())
+            .map(SceneSource::Shipped)
+            .collect();
+        scenes.extend(scene_file.map(SceneSource::File));
+        Panel {
+            open: false,
+            scenes,
+            save_path: "my-scene.toml".into(),
+            message: None,
+        }
+    }
+
+    /// Draws the panel, if open and the window can hold it, and applies
+    /// the player's changes of settings and playback to `sandbox`.
+    pub fn show(&mut self, ui: &mut egui::Ui, sandbox: &mut Sandbox) -> Option<PanelAction> {
+        let screen = ui.ctx().content_rect();
+        if !self.open || !fits(screen.size()) {
+            return None;
+        }
+        let width = PANEL_WIDTH.min(PANEL_SHARE * screen.width());
+        let mut action = None;
+        egui::Panel::right("sandbox")
+            .exact_size(width)
+            .resizable(false)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    action = self.contents(ui, sandbox);
+                });
+            });
+        action
+    }
+
+    fn contents(&mut self, ui: &mut egui::Ui, sandbox: &mut Sandbox) -> Option<PanelAction> {
+        let mut action = None;
+        ui.heading("Sandbox");
+        ui.small("Tab hides this panel");
+        if let Some(message) = &self.message {
+            ui.colored_label(egui::Color32::from_rgb(255, 200, 80), message);
+        }
+
+        ui.separator();
+        ui.strong("Scene");
+        let current = sandbox.scene_name().to_owned();
+        for source in &self.scenes {
+            let label = source.label();
+            let tip = match source {
+                SceneSource::Shipped(i) => SHIPPED_SCENES[*i].summary(),
+                SceneSource::File(_) => "the file given with --scene",
+            };
+            if ui
+                .selectable_label(label == current, &label)
+                .on_hover_text(tip)
+                .clicked()
+            {
+                action = Some(PanelAction::Load(source.clone()));
+            }
+        }
+
+        ui.separator();
+        ui.strong("Time");
+        ui.horizontal(|ui| {
+            let mut paused = sandbox.playback.paused();
+            if ui.checkbox(&mut paused, "pause (P)").changed() {
+                sandbox.playback.set_paused(paused);
+            }
+            if ui.button("step (.)").clicked() {
+                sandbox.playback.set_paused(true);
+                sandbox.playback.step_once();
+            }
+        });
+        ui.horizontal_wrapped(|ui| {
+            ui.label("speed");
+            for scale in TIME_SCALES {
+                let label = scale_label(scale);
+                if ui
+                    .selectable_label(sandbox.playback.scale() == scale, label)
+                    .clicked()
+                {
+                    sandbox.playback.set_scale(scale);
+                }
+            }
+        });
+
+        let mut scene = sandbox.scene().clone();
+        ui.separator();
+        ui.strong("Physics, from the next step");
+        live_settings(ui, &mut scene);
+        ui.separator();
+        ui.strong("On restart (I)");
+        restart_settings(ui, &mut scene);
+        if sandbox.restart_pending() {
+            ui.colored_label(
+                egui::Color32::from_rgb(255, 200, 80),
+                "changes wait for a restart",
+            );
+        }
+        if ui.button("restart (I)").clicked() {
+            action = Some(PanelAction::Restart);
+        }
+        ui.separator();
+        ui.strong("Light");
+        light_settings(ui, &mut scene);
+        if scene != *sandbox.scene() {
+            self.message = sandbox.set_scene(scene).err().map(|e| e.to_string());
+        }
+
+        ui.separator();
+        ui.strong("Throwing (B)");
+        number(
+            ui,
+            "speed, m/s",
+            &mut sandbox.throw_speed,
+            THROW_SPEEDS.0..=THROW_SPEEDS.1,
+        );
+        ui.label(format!(
+            "{} thrown of {}",
+            sandbox.thrown(),
+            crate::sandbox::MAX_THROWN
+        ));
+
+        ui.separator();
+        ui.strong("Save as");
+        ui.text_edit_singleline(&mut self.save_path);
+        if ui.button("save the settings").clicked() {
+            action = Some(PanelAction::Save(PathBuf::from(self.save_path.trim())));
+        }
+        action
+    }
+}
+
+/// Whether a window of `size` points can hold the panel.
+pub fn fits(size: egui::Vec2) -> bool {
+    size.x * PANEL_SHARE >= MIN_PANEL[0] && size.y >= MIN_PANEL[1]
+}
+
+fn scale_label(scale: f64) -> String {
+    if scale < 1.0 {
+        format!("1/{}", (1.0 / scale).round())
+    } else {
+        format!("{scale}x")
+    }
+}
+
+fn number(ui: &mut egui::Ui, label: &str, value: &mut f64, range: RangeInclusive<f64>) {
+    ui.add(egui::Slider::new(value, range).text(label));
+}
+
+fn number32(ui: &mut egui::Ui, label: &str, value: &mut f32, range: RangeInclusive<f32>) {
+    ui.add(egui::Slider::new(value, range).text(label));
+}
+
+fn whole(ui: &mut egui::Ui, label: &str, value: &mut usize, range: RangeInclusive<usize>) {
+    ui.add(egui::Slider::new(value, range).text(label));
+}
+
+/// What a running world takes at its next step.
+fn live_settings(ui: &mut egui::Ui, scene: &mut Scene) {
+    let c = &mut scene.world;
+    number(ui, "gravity, m/s²", &mut c.gravity, 0.0..=30.0);
+    number(ui, "ball restitution", &mut c.balls.restitution, 0.0..=1.0);
+    number(ui, "wall restitution", &mut c.room.restitution, 0.0..=1.0);
+    number(ui, "wall friction", &mut c.room.friction, 0.0..=1.5);
+    number(
+        ui,
+        "rolling resistance",
+        &mut c.room.rolling_resistance,
+        0.0..=0.2,
+    );
+    number(
+        ui,
+        "tumbler restitution",
+        &mut c.tumblers.restitution,
+        0.0..=1.0,
+    );
+    number(
+        ui,
+        "tumbler floor friction",
+        &mut c.tumblers.floor_friction,
+        0.0..=1.5,
+    );
+    number(ui, "tumbler damping", &mut c.tumblers.damping, 0.0..=10.0);
+    whole(ui, "solver iterations", &mut c.solver.iterations, 1..=64);
+    number(
+        ui,
+        "bounce threshold, m/s",
+        &mut c.solver.bounce_threshold,
+        0.0..=2.0,
+    );
+    number(
+        ui,
+        "event threshold, m/s",
+        &mut c.solver.event_threshold,
+        0.0..=5.0,
+    );
+    number(
+        ui,
+        "fireball speed, m/s (F)",
+        &mut c.fireball.speed,
+        0.5..=30.0,
+    );
+    number(ui, "grab spring, N/m", &mut c.grab.stiffness, 1.0..=2000.0);
+    number(ui, "grab damping, N s/m", &mut c.grab.damping, 0.0..=200.0);
+}
+
+/// What only a world built anew takes.
+fn restart_settings(ui: &mut egui::Ui, scene: &mut Scene) {
+    let b = &mut scene.world.balls;
+    whole(ui, "balls", &mut b.count, 0..=20_000);
+    number(ui, "ball radius, m", &mut b.radius, 0.02..=0.5);
+    number(ui, "ball mass, kg", &mut b.mass, 0.01..=20.0);
+}
+
+fn light_settings(ui: &mut egui::Ui, scene: &mut Scene) {
+    let l = &mut scene.light;
+    number32(ui, "intensity", &mut l.intensity, 0.0..=40.0);
+    number32(ui, "ambient", &mut l.ambient, 0.0..=1.0);
+    ui.checkbox(&mut l.bloom, "bloom");
+    number32(ui, "bloom strength", &mut l.bloom_strength, 0.0..=4.0);
+    number32(ui, "bloom threshold", &mut l.bloom_threshold, 0.1..=20.0);
+    ui.checkbox(&mut l.fireball_light, "fireball light");
+    ui.checkbox(&mut l.indirect, "bounce light");
+    ui.checkbox(&mut l.occlusion, "contact occlusion");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One frame of the panel in a headless egui context of `size` points.
+    fn frame(panel: &mut Panel, sandbox: &mut Sandbox, size: [f32; 2]) -> egui::FullOutput {
+        let ctx = egui::Context::default();
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size.into())),
+            ..Default::default()
+        };
+        let mut output = ctx.run_ui(input, |ui| {
+            panel.show(ui, sandbox);
+        });
+        // Nothing draws them here.
+        output.textures_delta.clear();
+        output
+    }
+
+    #[test]
+    fn the_panel_draws_every_scene_and_leaves_the_sandbox_as_it_was() {
+        let mut sandbox = Sandbox::new(Scene::default(), "default.toml", 1).unwrap();
+        let mut panel = Panel::new(Some("mine.toml".into()));
+        assert_eq!(panel.scenes.len(), SHIPPED_SCENES.len() + 1);
+        panel.open = true;
+        let output = frame(&mut panel, &mut sandbox, [1280.0, 720.0]);
+        assert!(!output.shapes.is_empty());
+        // Drawing alone changes no setting (sliders clamp nothing the
+        // default scene holds).
+        assert_eq!(sandbox.scene(), &Scene::default());
+        assert_eq!(panel.message, None);
+    }
+
+    #[test]
+    fn a_window_too_small_shows_no_panel() {
+        assert!(fits(egui::vec2(1280.0, 720.0)));
+        assert!(fits(egui::vec2(400.0, 200.0)));
+        assert!(!fits(egui::vec2(300.0, 720.0)));
+        assert!(!fits(egui::vec2(1280.0, 100.0)));
+        let mut sandbox = Sandbox::new(Scene::default(), "default.toml", 1).unwrap();
+        let mut panel = Panel::new(None);
+        panel.open = true;
+        let output = frame(&mut panel, &mut sandbox, [200.0, 100.0]);
+        assert!(output.shapes.is_empty());
+    }
+
+    #[test]
+    fn time_scales_read_as_fractions_and_multiples() {
+        let labels: Vec<String> = TIME_SCALES.into_iter().map(scale_label).collect();
+        assert_eq!(labels, ["1/16", "1/8", "1/4", "1/2", "1x", "2x", "4x"]);
+    }
+}
