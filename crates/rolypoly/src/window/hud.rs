@@ -179,7 +179,9 @@ impl Hud {
         let raw = self.input.take_egui_input(window);
         let mut output = self.context.run_ui(raw, |ui| {
             panel(ui);
+            // The help goes beside the panel, not over it.
             let ctx = ui.ctx();
+            let beside_panel = ctx.content_rect().right() - ui.available_rect_before_wrap().right();
             egui::Window::new("rolypoly")
                 .anchor(egui::Align2::LEFT_TOP, [8.0, 8.0])
                 .resizable(false)
@@ -228,7 +230,7 @@ impl Hud {
                 });
             if s.help {
                 egui::Window::new("Keys")
-                    .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
+                    .anchor(egui::Align2::RIGHT_TOP, [-8.0 - beside_panel, 8.0])
                     .resizable(false)
                     .show(ctx, |ui| {
                         egui::Grid::new("keys").striped(true).show(ui, |ui| {

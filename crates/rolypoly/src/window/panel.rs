@@ -190,6 +190,15 @@ pub fn fits(size: egui::Vec2) -> bool {
     size.x * PANEL_SHARE >= MIN_PANEL[0] && size.y >= MIN_PANEL[1]
 }
 
+/// What a window too small for the panel says.
+pub fn too_small() -> String {
+    let [w, h] = MIN_PANEL;
+    format!(
+        "the window is too small for the panel: it needs {:.0} x {h:.0} points or more",
+        w / PANEL_SHARE
+    )
+}
+
 fn scale_label(scale: f64) -> String {
     if scale < 1.0 {
         format!("1/{}", (1.0 / scale).round())

@@ -12,6 +12,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::CursorGrabMode;
 
 use super::App;
+use crate::window::panel::{fits, too_small};
 use rolypoly_render::Camera;
 
 /// What the mouse does.
@@ -123,6 +124,14 @@ impl App {
             KeyCode::Tab => {
                 self.panel.open = !self.panel.open;
                 self.log.say("panel", json!({ "open": self.panel.open }));
+                let scale = self
+                    .running
+                    .as_ref()
+                    .map_or(1.0, |r| r.window.scale_factor());
+                let points = self.viewport() / scale as f32;
+                if self.panel.open && !fits(egui::vec2(points.x, points.y)) {
+                    self.tell(too_small());
+                }
             }
             KeyCode::KeyF => {
                 if self.sandbox.sim.world.fireball().is_some() {
