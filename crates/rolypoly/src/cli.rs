@@ -1,6 +1,6 @@
 //! The command line (SPEC A1-A3): global scene options and the subcommands.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
 
@@ -33,6 +33,26 @@ pub struct Cli {
 
     #[command(subcommand)]
     pub command: Option<Command>,
+}
+
+impl WindowArgs {
+    /// The window as these flags open it, on a scene of `seed` from
+    /// `scene_file` (if one was given).
+    pub fn options(&self, seed: u64, scene_file: Option<&Path>) -> crate::window::WindowOptions {
+        crate::window::WindowOptions {
+            size: self.window_size,
+            fullscreen: self.fullscreen,
+            vsync: !self.no_vsync,
+            msaa: self.msaa,
+            log_events: self.log_events,
+            seed,
+            screenshot_dir: self.screenshot_dir.clone(),
+            move_speed: self.move_speed,
+            look_speed: self.look_speed.to_radians(),
+            scene_file: scene_file.map(Path::to_path_buf),
+            replay_digest: None,
+        }
+    }
 }
 
 /// Help section of the window's options.
@@ -195,6 +215,10 @@ pub enum Command {
     /// MP4 video or a folder of PNGs, with the renderer the window uses,
     /// without a window.
     Record(RecordArgs),
+    /// Play a recording of the inputs made with R in the window: in the
+    /// window, or with --out off-screen into a clip as `record` makes. The
+    /// state at its end is checked against the recording's, bit for bit.
+    Replay(ReplayArgs),
     /// Write the tumbler's mesh, made from the scene's six collision
     /// spheres, as a Wavefront OBJ file (the shipped assets/tumbler.obj is
     /// made this way from the default scene).
@@ -244,7 +268,31 @@ pub struct RecordArgs {
     pub out: PathBuf,
 }
 
-/// How the frames of `render` and `record` are drawn.
+#[derive(Debug, Args)]
+pub struct ReplayArgs {
+    /// The recording: a `.replay` file that R writes beside the screenshots.
+    #[arg(value_name = "LOG")]
+    pub log: PathBuf,
+
+    /// Frames per simulated second of the clip (1 ..= 60).
+    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=60))]
+    pub fps: u32,
+
+    /// Frame size of the clip in pixels, WIDTHxHEIGHT (each 1 ..= 8192).
+    #[arg(long, value_name = "WxH", default_value = "640x360", value_parser = parse_size)]
+    pub size: (u32, u32),
+
+    #[command(flatten)]
+    pub frame: FrameArgs,
+
+    /// Draw the replay off-screen into FILE.gif, FILE.mp4 or DIR/ (as
+    /// `record` does) instead of playing it in the window. The camera is
+    /// the one recorded, unless --camera says otherwise.
+    #[arg(long, value_name = "FILE.gif|FILE.mp4|DIR/")]
+    pub out: Option<PathBuf>,
+}
+
+/// How the frames of `render`, `record` and `replay` are drawn.
 #[derive(Debug, Args)]
 pub struct FrameArgs {
     /// Multisample anti-aliasing: 4 or 1 (off).

@@ -7,6 +7,7 @@
 pub mod cli;
 pub mod record;
 pub mod render;
+pub mod replay;
 pub mod sandbox;
 pub mod scene;
 pub mod simulate;
@@ -42,18 +43,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
     match &cli.command {
         None => {
             let w = &cli.window;
-            let options = window::WindowOptions {
-                size: w.window_size,
-                fullscreen: w.fullscreen,
-                vsync: !w.no_vsync,
-                msaa: w.msaa,
-                log_events: w.log_events,
-                seed: scene_args.seed,
-                screenshot_dir: w.screenshot_dir.clone(),
-                move_speed: w.move_speed,
-                look_speed: w.look_speed.to_radians(),
-                scene_file: path.map(Path::to_path_buf),
-            };
+            let options = w.options(scene_args.seed, path);
             // The light's switches given as flags are settings like any other.
             let mut scene = scene;
             scene.light = w.effects.apply(&scene.light);
@@ -76,6 +66,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
             &args.frame.effects.apply(&scene.light),
             args,
         ),
+        Some(Command::Replay(args)) => replay::replay(args, &cli.window),
         Some(Command::MakeTumblerObj(args)) => render::make_tumbler_obj(world.config(), args),
     }
 }
@@ -116,6 +107,13 @@ fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
             record::ClipKind::of(&args.out)?;
             file_in_folder(&args.out)
         }
+        Some(Command::Replay(args)) => match &args.out {
+            Some(out) => {
+                record::ClipKind::of(out)?;
+                file_in_folder(out)
+            }
+            None => Ok(()),
+        },
         Some(Command::MakeTumblerObj(args)) => {
             file_in_folder(&args.out)?;
             named_for(&args.out, "obj", "the mesh is a Wavefront OBJ file")

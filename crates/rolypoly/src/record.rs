@@ -59,40 +59,21 @@ impl ClipKind {
 /// Records `sim` from now for `args.seconds`, `args.fps` frames a
 /// simulated second, into `args.out`.
 pub fn record(sim: &mut Simulation, light: &LightConfig, args: &RecordArgs) -> anyhow::Result<()> {
-    let kind = ClipKind::of(&args.out)?;
-    if kind == ClipKind::Mp4 {
-        find_ffmpeg(&args.out)?;
-    }
     if args.frame.fireball {
         sim.world.launch_fireball(None);
     }
     let mut frames = Frames::new(sim.world.config(), &args.frame, args.size)?;
     let count = frame_count(args.seconds, args.fps);
-    // A GIF is encoded in memory and written whole at the end, so that a
-    // run that fails half way leaves no half a file.
-    let mut gif = Vec::new();
-    let mut clip = Clip::open(kind.clone(), &args.out, args.size, args.fps, &mut gif)?;
-    let mut progress = Progress::new(count);
     let dt = sim.world.config().solver.dt;
     let mut steps_done = 0;
-    for k in 0..count {
+    write_clip(&args.out, args.size, args.fps, count, |k| {
         // Frame k shows the moment k / fps, the same step `render --time`
         // would stop at.
         let steps = steps_for(f64::from(k) / f64::from(args.fps), dt);
         sim.ticks(steps - steps_done);
         steps_done = steps;
-        let image = frames.draw(sim, light)?;
-        clip.add(k, image)
-            .with_context(|| format!("cannot write `{}`", args.out.display()))?;
-        progress.advance();
-    }
-    progress.finish();
-    clip.finish()
-        .and_then(|()| match kind {
-            ClipKind::Gif => Ok(std::fs::write(&args.out, &gif)?),
-            _ => Ok(()),
-        })
-        .with_context(|| format!("cannot write `{}`", args.out.display()))?;
+        frames.draw(sim, light)
+    })?;
     let (width, height) = args.size;
     println!(
         "wrote {} ({count} frames of {width}x{height} at {} frames per second, t = 0 to {:.3} s, {})",
@@ -102,6 +83,40 @@ pub fn record(sim: &mut Simulation, light: &LightConfig, args: &RecordArgs) -> a
         frames.describe()
     );
     Ok(())
+}
+
+/// Writes the `count` frames that `frame(k)` draws, `size` each, `fps` a
+/// second, as the clip `out` names (see [`ClipKind::of`]), with a
+/// progress bar once it takes a while.
+pub fn write_clip(
+    out: &Path,
+    size: (u32, u32),
+    fps: u32,
+    count: u32,
+    mut frame: impl FnMut(u32) -> anyhow::Result<RgbaImage>,
+) -> anyhow::Result<()> {
+    let kind = ClipKind::of(out)?;
+    if kind == ClipKind::Mp4 {
+        find_ffmpeg(out)?;
+    }
+    // A GIF is encoded in memory and written whole at the end, so that a
+    // run that fails half way leaves no half a file.
+    let mut gif = Vec::new();
+    let mut clip = Clip::open(kind.clone(), out, size, fps, &mut gif)?;
+    let mut progress = Progress::new(count);
+    for k in 0..count {
+        let image = frame(k)?;
+        clip.add(k, image)
+            .with_context(|| format!("cannot write `{}`", out.display()))?;
+        progress.advance();
+    }
+    progress.finish();
+    clip.finish()
+        .and_then(|()| match kind {
+            ClipKind::Gif => Ok(std::fs::write(out, &gif)?),
+            _ => Ok(()),
+        })
+        .with_context(|| format!("cannot write `{}`", out.display()))
 }
 
 /// The frames of a clip of `seconds` at `fps`: one at each 1 / fps from

@@ -78,7 +78,23 @@ impl Frames {
         sim: &Simulation,
         light: &LightConfig,
     ) -> anyhow::Result<image::RgbaImage> {
-        Ok(self.snapshot.capture(&sim.view(light), &self.camera)?)
+        let camera = self.camera;
+        self.draw_from(sim, light, &camera)
+    }
+
+    /// The camera the flags chose: `--camera`, or the overview.
+    pub fn camera(&self) -> Camera {
+        self.camera
+    }
+
+    /// The frame of `sim` now, lit by `light`, seen by `camera`.
+    pub fn draw_from(
+        &mut self,
+        sim: &Simulation,
+        light: &LightConfig,
+        camera: &Camera,
+    ) -> anyhow::Result<image::RgbaImage> {
+        Ok(self.snapshot.capture(&sim.view(light), camera)?)
     }
 
     /// How the frames are drawn, in words, and on what.

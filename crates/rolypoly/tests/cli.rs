@@ -671,3 +671,115 @@ fn record_refuses_unknown_clip_kinds_and_lengths_cleanly() {
         assert!(!stderr(&output).contains("panicked"), "{bad:?}");
     }
 }
+
+/// A recording of a short session, made through the sandbox as the window
+/// makes one: some steps, a ball thrown, the recording from then on.
+fn recording(name: &str) -> (PathBuf, rolypoly::sandbox::ReplayLog) {
+    use rolypoly::sandbox::Sandbox;
+    let scene = rolypoly::scene::Scene::default();
+    let mut sandbox = Sandbox::new(scene, "default.toml", 5).expect("the default scene builds");
+    (0..30).for_each(|_| sandbox.tick());
+    sandbox.start_recording();
+    sandbox
+        .throw(glam::DVec3::new(0.0, 2.0, 3.0), glam::DVec3::NEG_Z)
+        .expect("a throw");
+    (0..36).for_each(|_| sandbox.tick());
+    let log = sandbox.stop_recording().expect("a recording");
+    let path = scratch(name);
+    log.write(&path).expect("the recording is written");
+    (path, log)
+}
+
+#[test]
+fn replay_draws_a_recording_into_a_clip_and_checks_its_end_state() {
+    let (log_path, log) = recording("session.replay");
+    let out = scratch("replay.gif");
+    let _ = std::fs::remove_file(&out);
+    let output = rolypoly(&[
+        "replay",
+        log_path.to_str().expect("UTF-8 path"),
+        "--size",
+        "48x27",
+        "--fps",
+        "20",
+        "--out",
+        out.to_str().expect("UTF-8 path"),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let said = stdout(&output);
+    // 36 ticks of 1/120 s at 20 frames a second.
+    assert!(said.contains("6 frames of 48x27, ticks 30 to 66"), "{said}");
+    assert!(
+        said.contains(&format!(
+            "end state identical to the recording's (digest {})",
+            log.end_digest
+        )),
+        "{said}"
+    );
+    let frames = gif_frames(&out);
+    assert_eq!(frames.len(), 6);
+    assert_ne!(frames[0].0, frames[5].0, "the balls move");
+}
+
+#[test]
+fn replay_refuses_a_broken_or_tampered_recording_cleanly() {
+    let (log_path, log) = recording("tampered.replay");
+    let text = std::fs::read_to_string(&log_path).expect("the recording");
+    let tampered = scratch("tampered-digest.replay");
+    std::fs::write(
+        &tampered,
+        text.replacen(&log.end_digest, "0000000000000000", 1),
+    )
+    .expect("written");
+    let out = scratch("tampered.gif");
+    let err = assert_clean_failure_with_output(&rolypoly(&[
+        "replay",
+        tampered.to_str().expect("UTF-8 path"),
+        "--size",
+        "32x18",
+        "--out",
+        out.to_str().expect("UTF-8 path"),
+    ]));
+    assert!(
+        err.contains("the replay ends in another state than the recording did"),
+        "{err}"
+    );
+
+    let not_json = scene_file("not-a-recording.replay", "gravity = 3\n");
+    let err = assert_clean_failure(&rolypoly(&[
+        "replay",
+        not_json.to_str().expect("UTF-8 path"),
+        "--out",
+        "x.gif",
+    ]));
+    assert!(
+        err.contains("not-a-recording.replay:1: not a rolypoly recording"),
+        "{err}"
+    );
+
+    let err = assert_clean_failure(&rolypoly(&["replay", "no/such.replay", "--out", "x.gif"]));
+    assert!(
+        err.contains("cannot read recording `no/such.replay`"),
+        "{err}"
+    );
+
+    let err = assert_clean_failure(&rolypoly(&[
+        "replay",
+        log_path.to_str().expect("UTF-8 path"),
+        "--fireball",
+        "--out",
+        "x.gif",
+    ]));
+    assert!(err.contains("--fireball does not apply"), "{err}");
+}
+
+/// A failed run that wrote to standard output before it failed (a clip's
+/// summary before the end state's check): non-zero exit, one `error:`
+/// message, no panic.
+fn assert_clean_failure_with_output(output: &Output) -> String {
+    let err = stderr(output);
+    assert!(!output.status.success(), "expected failure, stderr: {err}");
+    assert!(err.starts_with("error: "), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    err
+}

@@ -148,7 +148,7 @@ fn number(v: &Value, key: &str) -> f64 {
 }
 
 #[test]
-fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_and_screenshots() {
+fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshots() {
     let (display, _xvfb) = start_display();
     let shots = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window-shots");
     let _ = std::fs::remove_dir_all(&shots);
@@ -348,6 +348,55 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_and_screenshots() {
     s.xdotool(&["key", "Tab"]);
     s.expect("the panel to close", |v| {
         v["event"] == "panel" && v["open"] == false
+    });
+
+    // R records what is done until R again: a ball, the fireball, a turn
+    // of the view; `rolypoly replay` plays it to the same end state.
+    s.xdotool(&["key", "r"]);
+    s.expect("the recording to start", |v| {
+        v["event"] == "recording" && v["on"] == true
+    });
+    s.xdotool(&["key", "b"]);
+    s.expect("a ball thrown", |v| v["event"] == "throw");
+    s.settle();
+    s.xdotool(&["key", "f"]);
+    s.expect("the fireball", |v| {
+        v["event"] == "fireball" && v["on"] == true
+    });
+    s.xdotool(&["mousemove", "--window", &w, "260", "125"]);
+    s.settle();
+    s.settle();
+    s.xdotool(&["key", "r"]);
+    let recorded = s.expect("the recording written", |v| v["event"] == "recorded");
+    let replay_log = PathBuf::from(recorded["path"].as_str().expect("path"));
+    assert!(replay_log.starts_with(&shots), "{}", replay_log.display());
+    assert!(number(&recorded, "to_tick") > number(&recorded, "from_tick"));
+    let clip = shots.join("replay-frames");
+    let replayed = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .arg("replay")
+        .arg(&replay_log)
+        .args(["--size", "96x54", "--fps", "10", "--out"])
+        .arg(&clip)
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .output()
+        .expect("rolypoly replay runs");
+    let said = String::from_utf8_lossy(&replayed.stdout);
+    assert!(
+        replayed.status.success(),
+        "{said}{}",
+        String::from_utf8_lossy(&replayed.stderr)
+    );
+    let digest = recorded["digest"].as_str().expect("digest");
+    assert!(
+        said.contains(&format!(
+            "end state identical to the recording's (digest {digest})"
+        )),
+        "{said}"
+    );
+    assert!(clip.join("frame-00000.png").is_file());
+    s.xdotool(&["key", "f"]);
+    s.expect("the fireball gone", |v| {
+        v["event"] == "fireball" && v["on"] == false
     });
 
     // F12: a PNG of the window's size appears where it says.

@@ -1,21 +1,29 @@
 //! The toy as a player drives it, whatever draws it: the running
 //! simulation, the settings as the player has left them, pause, single
-//! steps and the time scale, thrown balls, and the scene chosen from a list.
-//! The window's keys and panel only call into this, so that all of it is
-//! tested without a window.
+//! steps and the time scale, thrown balls, the scene chosen from a list,
+//! and every input kept so that a run can be recorded and replayed to the
+//! same bits. The window's keys and panel only call into this, so that all
+//! of it is tested without a window.
 
-use glam::DVec3;
+use std::collections::VecDeque;
+
+use glam::{DVec3, Vec3};
 use rolypoly_physics::{BuildError, World};
 
 use crate::scene::{self, Scene, SceneError};
 use crate::simulation::Simulation;
 
 mod fixed_steps;
+mod input;
 mod playback;
+mod replay_log;
 mod shipped;
 
 pub use fixed_steps::{MAX_CATCH_UP, STEP_BUDGET_PER_FRAME};
+pub use input::{CameraPose, Input, Journal, Refused, Timed};
+use input::{array, vector};
 pub use playback::{Playback, TIME_SCALES};
+pub use replay_log::{REPLAY_FORMAT, ReplayLog};
 pub use shipped::{SHIPPED_SCENES, ShippedScene};
 
 /// Most balls a player may throw into one run of a scene; I (restart)
@@ -45,6 +53,15 @@ pub struct Sandbox {
     /// Speed of a thrown ball (m/s).
     pub throw_speed: f64,
     thrown: usize,
+    /// Ticks since the world's line began (see [`Journal`]).
+    ticks: u64,
+    journal: Journal,
+    /// The tick a recording started at, while one runs.
+    recording_from: Option<u64>,
+    /// Inputs still to play, in replays, and the tick the replay ends at.
+    script: Option<(VecDeque<Timed>, u64)>,
+    /// The camera as the last recorded input put it (replays follow it).
+    pub view_pose: Option<CameraPose>,
 }
 
 impl Sandbox {
@@ -58,13 +75,90 @@ impl Sandbox {
     pub fn with_world(world: World, scene: Scene, name: &str, seed: u64) -> Sandbox {
         Sandbox {
             sim: Simulation::new(world, scene.effects.clone(), seed),
+            journal: Journal {
+                scene: scene.clone(),
+                name: name.to_owned(),
+                inputs: Vec::new(),
+            },
             scene,
             scene_name: name.to_owned(),
             seed,
             playback: Playback::default(),
             throw_speed: THROW_SPEED,
             thrown: 0,
+            ticks: 0,
+            recording_from: None,
+            script: None,
+            view_pose: None,
         }
+    }
+
+    /// Takes `input`: what it does to the world or the settings, kept in
+    /// the journal when it did something.
+    pub fn apply(&mut self, input: Input) -> Result<(), Refused> {
+        match &input {
+            Input::Fireball { from, direction } => {
+                self.sim
+                    .world
+                    .launch_fireball(Some((vector(*from), vector(*direction))));
+            }
+            Input::FireballOff => self.sim.world.remove_fireball(),
+            Input::Throw {
+                from,
+                direction,
+                speed,
+            } => {
+                if self.thrown >= MAX_THROWN {
+                    return Err(ThrowRefused.into());
+                }
+                self.thrown += 1;
+                let velocity = vector(*direction).normalize_or(DVec3::NEG_Z) * *speed;
+                self.sim.world.throw_ball(vector(*from), velocity);
+            }
+            Input::Grab { tumbler, point } => self.sim.world.grab(*tumbler, vector(*point)),
+            Input::Drag { to } => self.sim.world.drag_to(vector(*to)),
+            Input::Release => self.sim.world.release(),
+            Input::Restart => self.rebuild_or_reset()?,
+            Input::Settings { scene } => {
+                let scene = scene::parse_scene(scene, "the panel's settings")?;
+                scene::validate(&scene)?;
+                self.sim.world.tune(&scene.world);
+                self.scene = scene;
+            }
+            Input::Load { name, scene } => {
+                let scene = scene::parse_scene(scene, name)?;
+                let world = World::new(scene.world.clone(), self.seed)?;
+                self.sim = Simulation::new(world, scene.effects.clone(), self.seed);
+                self.scene_name.clone_from(name);
+                self.thrown = 0;
+                // A new line begins: what came before no longer matters.
+                self.ticks = 0;
+                self.journal = Journal {
+                    scene: scene.clone(),
+                    name: name.clone(),
+                    inputs: Vec::new(),
+                };
+                self.recording_from = self.recording_from.map(|_| 0);
+                self.scene = scene;
+                return Ok(());
+            }
+            Input::Camera {
+                position,
+                yaw,
+                pitch,
+            } => {
+                self.view_pose = Some(CameraPose {
+                    position: Vec3::from_array(*position),
+                    yaw: *yaw,
+                    pitch: *pitch,
+                });
+            }
+        }
+        self.journal.inputs.push(Timed {
+            tick: self.ticks,
+            input,
+        });
+        Ok(())
     }
 
     pub fn scene(&self) -> &Scene {
@@ -88,10 +182,13 @@ impl Sandbox {
     /// world can take hold from the next step, the rest from the next
     /// restart.
     pub fn set_scene(&mut self, scene: Scene) -> Result<(), SceneError> {
+        // Checked before it becomes text, to name the key and not a line.
         scene::validate(&scene)?;
-        self.sim.world.tune(&scene.world);
-        self.scene = scene;
-        Ok(())
+        let text = scene::scene_file_text(&scene, "settings");
+        match self.apply(Input::Settings { scene: text }) {
+            Err(Refused::Scene(e)) => Err(e),
+            _ => Ok(()),
+        }
     }
 
     /// Whether some changed settings wait for a restart (I).
@@ -103,36 +200,44 @@ impl Sandbox {
     /// I: the balls anew, thrown balls gone; the whole world built anew
     /// from the settings when some wait for it.
     pub fn restart(&mut self) -> Result<(), BuildError> {
-        self.thrown = 0;
-        if self.restart_pending() {
-            let world = World::new(self.scene.world.clone(), self.seed)?;
-            self.sim = Simulation::new(world, self.scene.effects.clone(), self.seed);
-            Ok(())
-        } else {
-            self.sim.world.reset_balls()
+        match self.apply(Input::Restart) {
+            Err(Refused::Build(e)) => Err(e),
+            _ => Ok(()),
         }
     }
 
-    /// Another scene at once, from the start; the time scale and pause stay
-    /// as they were.
-    pub fn load(&mut self, scene: Scene, name: &str) -> Result<(), BuildError> {
-        let world = World::new(scene.world.clone(), self.seed)?;
-        self.sim = Simulation::new(world, scene.effects.clone(), self.seed);
-        self.scene = scene;
-        self.scene_name = name.to_owned();
+    fn rebuild_or_reset(&mut self) -> Result<(), BuildError> {
+        if self.restart_pending() {
+            let world = World::new(self.scene.world.clone(), self.seed)?;
+            self.sim = Simulation::new(world, self.scene.effects.clone(), self.seed);
+        } else {
+            self.sim.world.reset_balls()?;
+        }
         self.thrown = 0;
         Ok(())
+    }
+
+    /// Another scene at once, from the start; the time scale and pause stay
+    /// as they were. `text` is its file's.
+    pub fn load(&mut self, text: &str, name: &str) -> Result<(), Refused> {
+        self.apply(Input::Load {
+            name: name.to_owned(),
+            scene: text.to_owned(),
+        })
     }
 
     /// Throws a ball from `from` along `direction` at the throw speed.
     /// Returns its number.
     pub fn throw(&mut self, from: DVec3, direction: DVec3) -> Result<usize, ThrowRefused> {
-        if self.thrown >= MAX_THROWN {
-            return Err(ThrowRefused);
+        let input = Input::Throw {
+            from: array(from),
+            direction: array(direction),
+            speed: self.throw_speed,
+        };
+        match self.apply(input) {
+            Err(Refused::Throw(refused)) => Err(refused),
+            _ => Ok(self.sim.world.balls().len() - 1),
         }
-        self.thrown += 1;
-        let velocity = direction.normalize_or(DVec3::NEG_Z) * self.throw_speed;
-        Ok(self.sim.world.throw_ball(from, velocity))
     }
 
     /// Balls thrown since the scene started or restarted.
@@ -145,8 +250,126 @@ impl Sandbox {
     /// stepping. Returns how many ran.
     pub fn frame(&mut self, elapsed: f64, spent: impl FnMut() -> std::time::Duration) -> u32 {
         let dt = self.sim.world.config().solver.dt;
-        let sim = &mut self.sim;
-        self.playback.advance(elapsed, dt, spent, || sim.tick())
+        let mut playback = std::mem::take(&mut self.playback);
+        let steps = playback.advance(elapsed, dt, spent, || self.tick());
+        self.playback = playback;
+        steps
+    }
+
+    /// One step, after the replayed inputs due before it; none once a
+    /// replay has reached its end (see [`Sandbox::end_replay`]).
+    pub fn tick(&mut self) {
+        self.play_due();
+        if self.replay_end().is_some_and(|end| self.ticks >= end) {
+            return;
+        }
+        self.sim.tick();
+        self.ticks += 1;
+    }
+
+    /// Steps until the replay has played every input and reached its end
+    /// tick, or until `tick` if that comes first.
+    pub fn replay_until(&mut self, tick: u64) {
+        while self.replaying() && self.ticks < tick {
+            self.tick();
+        }
+        if self.ticks >= tick {
+            self.play_due();
+        }
+    }
+
+    /// Lets the world run on after a replay, as a live one.
+    pub fn end_replay(&mut self) {
+        self.script = None;
+    }
+
+    /// Ticks since the world's line began.
+    pub fn ticks(&self) -> u64 {
+        self.ticks
+    }
+
+    fn play_due(&mut self) {
+        let ticks = self.ticks;
+        while let Some(timed) = self
+            .script
+            .as_mut()
+            .and_then(|(inputs, _)| {
+                inputs
+                    .front()
+                    .is_some_and(|t| t.tick <= ticks)
+                    .then(|| inputs.pop_front())
+            })
+            .flatten()
+        {
+            // What was refused when recorded is refused again.
+            let _ = self.apply(timed.input);
+        }
+    }
+
+    pub fn recording(&self) -> bool {
+        self.recording_from.is_some()
+    }
+
+    /// R: from now on, what is done is part of the recording.
+    pub fn start_recording(&mut self) {
+        self.recording_from = Some(self.ticks);
+    }
+
+    /// R again: the recording, from the start of the world's line (so that
+    /// a replay can rebuild the state the recording started from) to now.
+    pub fn stop_recording(&mut self) -> Option<ReplayLog> {
+        let from = self.recording_from.take()?;
+        Some(ReplayLog {
+            format: REPLAY_FORMAT,
+            seed: self.seed,
+            name: self.journal.name.clone(),
+            scene: scene::scene_file_text(&self.journal.scene, &self.journal.name),
+            from_tick: from,
+            to_tick: self.ticks,
+            end_digest: self.digest(),
+            inputs: self.journal.inputs.clone(),
+        })
+    }
+
+    /// The sandbox at the start of `log`'s world line with its inputs to
+    /// play, not yet stepped.
+    pub fn for_replay(log: &ReplayLog) -> Result<Sandbox, Refused> {
+        let scene = scene::parse_scene(&log.scene, &log.name)?;
+        let mut sandbox = Sandbox::new(scene, &log.name, log.seed)?;
+        sandbox.script = Some((log.inputs.iter().cloned().collect(), log.to_tick));
+        Ok(sandbox)
+    }
+
+    /// Whether a replay has inputs or ticks still to play.
+    pub fn replaying(&self) -> bool {
+        self.script
+            .as_ref()
+            .is_some_and(|(inputs, end)| !inputs.is_empty() || self.ticks < *end)
+    }
+
+    /// The tick a replay ends at.
+    pub fn replay_end(&self) -> Option<u64> {
+        self.script.as_ref().map(|(_, end)| *end)
+    }
+
+    /// A fingerprint of the state: every body's every bit, the time, the
+    /// fireball. Two runs with the same digest are, as far as can be seen,
+    /// the same run.
+    pub fn digest(&self) -> String {
+        let w = &self.sim.world;
+        let state = format!(
+            "{:?}{:?}{:?}{}{}",
+            w.balls(),
+            w.tumblers(),
+            w.fireball(),
+            w.time().to_bits(),
+            w.step_count()
+        );
+        // FNV-1a, 64 bits.
+        let hash = state.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+        });
+        format!("{hash:016x}")
     }
 }
 

@@ -150,10 +150,165 @@ fn a_shipped_scene_loads_at_once_with_its_settings() {
         .filter(|s| !s.name.starts_with("ballpit"))
     {
         let scene = scene::parse_scene(shipped.text, shipped.name).unwrap();
-        s.load(scene.clone(), shipped.name).unwrap();
+        s.load(shipped.text, shipped.name).unwrap();
         assert_eq!(s.scene_name(), shipped.name);
         assert_eq!(s.world().config(), &scene.world);
         assert_eq!(s.world().time(), 0.0);
         assert!(!s.restart_pending());
+    }
+}
+
+/// A scripted session: every kind of input, at ticks spread over the run,
+/// with pauses, single steps and time scales between them.
+fn scripted_session(s: &mut Sandbox, rng: &mut rolypoly_physics::Rng) {
+    let eye = DVec3::new(0.0, 2.0, 3.5);
+    let frame = |s: &mut Sandbox, n: usize| {
+        for _ in 0..n {
+            s.frame(1.0 / 60.0, || Duration::ZERO);
+        }
+    };
+    frame(s, 20);
+    s.start_recording();
+    for round in 0..3 {
+        s.throw(eye, DVec3::new(rng.range(-0.3, 0.3), -0.2, -1.0))
+            .unwrap();
+        frame(s, 7);
+        s.apply(Input::Fireball {
+            from: [0.0, 1.5, 3.0],
+            direction: [rng.range(-0.2, 0.2), -0.1, -1.0],
+        })
+        .unwrap();
+        s.playback.set_scale(0.25);
+        frame(s, 9);
+        s.playback.set_scale(2.0);
+        let t = s.world().tumblers()[round].center_of_mass();
+        s.apply(Input::Grab {
+            tumbler: round,
+            point: t.to_array(),
+        })
+        .unwrap();
+        for k in 0..10 {
+            let to = t + DVec3::new(0.02 * f64::from(k), 0.0, 0.01 * f64::from(k));
+            s.apply(Input::Drag { to: to.to_array() }).unwrap();
+            frame(s, 1);
+        }
+        s.apply(Input::Release).unwrap();
+        s.playback.set_paused(true);
+        s.playback.step_once();
+        frame(s, 3);
+        s.playback.set_paused(false);
+        let mut scene = s.scene().clone();
+        scene.world.gravity = rng.range(2.0, 12.0);
+        scene.world.balls.restitution = rng.range(0.3, 1.0);
+        s.set_scene(scene).unwrap();
+        s.apply(Input::Camera {
+            position: [0.1, 1.0, 3.0],
+            yaw: 0.2,
+            pitch: -0.1,
+        })
+        .unwrap();
+        frame(s, 11);
+        s.apply(Input::FireballOff).unwrap();
+        if round == 1 {
+            s.restart().unwrap();
+        }
+    }
+    frame(s, 15);
+}
+
+#[test]
+fn a_recorded_session_replays_to_the_same_bits() {
+    for seed in [11, 12, 13] {
+        let mut s = sandbox(seed);
+        scripted_session(&mut s, &mut rolypoly_physics::Rng::new(seed));
+        let log = s.stop_recording().expect("a recording");
+        assert!(log.from_tick > 0 && log.to_tick > log.from_tick);
+        assert_eq!(log.end_digest, s.digest());
+        // Through the file's text, as `rolypoly replay` reads it.
+        let log = ReplayLog::parse(&log.to_text(), "session.replay").unwrap();
+        let mut replay = Sandbox::for_replay(&log).unwrap();
+        replay.replay_until(log.from_tick);
+        assert_eq!(replay.ticks(), log.from_tick);
+        replay.replay_until(u64::MAX);
+        assert!(!replay.replaying());
+        assert_eq!(replay.ticks(), log.to_tick);
+        assert_eq!(replay.world().balls(), s.world().balls(), "seed {seed}");
+        assert_eq!(replay.world().tumblers(), s.world().tumblers());
+        assert_eq!(replay.digest(), log.end_digest);
+        assert_eq!(replay.scene(), s.scene());
+        assert_eq!(replay.view_pose, s.view_pose);
+        // A replay held at its end steps no further until let go.
+        replay.tick();
+        assert_eq!(replay.ticks(), log.to_tick);
+        replay.end_replay();
+        replay.tick();
+        assert_eq!(replay.ticks(), log.to_tick + 1);
+    }
+}
+
+#[test]
+fn a_replay_without_an_input_ends_elsewhere() {
+    let mut s = sandbox(14);
+    scripted_session(&mut s, &mut rolypoly_physics::Rng::new(14));
+    let mut log = s.stop_recording().unwrap();
+    let throw = log
+        .inputs
+        .iter()
+        .position(|t| matches!(t.input, Input::Throw { .. }))
+        .unwrap();
+    log.inputs.remove(throw);
+    let mut replay = Sandbox::for_replay(&log).unwrap();
+    replay.replay_until(u64::MAX);
+    assert_ne!(replay.digest(), log.end_digest);
+}
+
+#[test]
+fn a_scene_loaded_while_recording_starts_the_recording_over_from_it() {
+    let mut s = sandbox(15);
+    s.start_recording();
+    frames(&mut s, 10, 1.0 / 60.0);
+    let cradle = SHIPPED_SCENES
+        .iter()
+        .find(|s| s.name == "newtons-cradle.toml")
+        .unwrap();
+    s.load(cradle.text, cradle.name).unwrap();
+    frames(&mut s, 30, 1.0 / 60.0);
+    let log = s.stop_recording().unwrap();
+    assert_eq!(
+        (log.name.as_str(), log.from_tick, log.to_tick),
+        (cradle.name, 0, 60)
+    );
+    let mut replay = Sandbox::for_replay(&log).unwrap();
+    replay.replay_until(u64::MAX);
+    assert_eq!(replay.digest(), log.end_digest);
+}
+
+#[test]
+fn a_broken_recording_is_refused_with_its_line() {
+    let mut s = sandbox(16);
+    s.start_recording();
+    s.throw(DVec3::Y, DVec3::X).unwrap();
+    frames(&mut s, 5, 1.0 / 60.0);
+    let text = s.stop_recording().unwrap().to_text();
+    for (broken, says) in [
+        (String::new(), "x.replay: the file is empty"),
+        ("{}".to_owned(), "x.replay:1: not a rolypoly recording"),
+        (
+            text.replacen("\"format\":1", "\"format\":9", 1),
+            "x.replay:1: a recording of format 9",
+        ),
+        (
+            text.replacen("\"kind\":\"throw\"", "\"kind\":\"jump\"", 1),
+            "x.replay:2: unknown variant `jump`",
+        ),
+        (
+            text.replacen("\"tick\":0", "\"tick\":99", 1),
+            "x.replay:2: tick 99 is out of order",
+        ),
+    ] {
+        let error = ReplayLog::parse(&broken, "x.replay")
+            .unwrap_err()
+            .to_string();
+        assert!(error.starts_with(says), "{error}");
     }
 }

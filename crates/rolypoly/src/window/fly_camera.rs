@@ -4,6 +4,8 @@
 use glam::{Vec2, Vec3};
 use rolypoly_render::Camera;
 
+use crate::sandbox::CameraPose;
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FlyCamera {
     pub position: Vec3,
@@ -26,6 +28,16 @@ impl FlyCamera {
             yaw: (-d.x).atan2(-d.z),
             pitch: d.y.asin(),
             fov_y_deg: camera.fov_y_deg,
+        }
+    }
+
+    /// Standing and looking as `pose` says, with the field of view of `like`.
+    pub fn posed(pose: &CameraPose, like: &Camera) -> FlyCamera {
+        FlyCamera {
+            position: pose.position,
+            yaw: pose.yaw,
+            pitch: pose.pitch,
+            fov_y_deg: like.fov_y_deg,
         }
     }
 

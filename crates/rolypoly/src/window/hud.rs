@@ -111,7 +111,7 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 16] = [
+const KEYS: [(&str, &str); 17] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
@@ -121,6 +121,7 @@ const KEYS: [(&str, &str); 16] = [
     (".", "one step while paused"),
     ("[ and ]", "slower, faster (1/16x to 4x)"),
     ("Tab", "sandbox panel: scenes, settings, save"),
+    ("R", "record the inputs / stop and write them"),
     ("G", "grab mode: drag tumblers with the left button"),
     ("I", "re-initialise the balls"),
     ("H or F1", "this help"),

@@ -3,7 +3,7 @@
 //! the sandbox panel, the HUD and screenshots.
 
 mod app;
-mod fly_camera;
+pub(crate) mod fly_camera;
 mod hud;
 mod log;
 mod panel;

@@ -1,14 +1,19 @@
 //! What the panel and the keys ask of the sandbox beyond a setting: load a
-//! scene, restart, throw a ball, save the settings. Where the tumblers'
-//! shape changes, the renderer is made anew with their mesh.
+//! scene, restart, throw a ball, save the settings, record the inputs.
+//! Where the tumblers' shape changes, the renderer is made anew with their
+//! mesh.
 
 use std::path::Path;
 use std::time::{Duration, Instant};
 
 use serde_json::json;
 
+use anyhow::Context as _;
+
 use super::App;
-use crate::scene::{self, Scene};
+use crate::sandbox::Input;
+use crate::scene;
+use crate::window::fly_camera::FlyCamera;
 use crate::window::panel::{PanelAction, SceneSource};
 
 /// How long a message stays on the HUD.
@@ -66,18 +71,14 @@ impl App {
     }
 
     fn load(&mut self, source: &SceneSource) {
-        let loaded = match source {
-            SceneSource::Shipped(i) => {
-                let shipped = crate::sandbox::SHIPPED_SCENES[*i];
-                scene::parse_scene(shipped.text, shipped.name)
-            }
-            SceneSource::File(path) => scene::load_scene(Some(path)),
-        };
         let name = source.label();
-        let built = loaded
-            .map_err(anyhow::Error::from)
-            .and_then(|scene: Scene| Ok(self.sandbox.load(scene, &name)?));
-        match built {
+        let text = match source {
+            SceneSource::Shipped(i) => Ok(crate::sandbox::SHIPPED_SCENES[*i].text.to_owned()),
+            SceneSource::File(path) => std::fs::read_to_string(path)
+                .with_context(|| format!("cannot read scene file `{}`", path.display())),
+        };
+        let loaded = text.and_then(|text| Ok(self.sandbox.load(&text, &name)?));
+        match loaded {
             Ok(()) => {
                 self.release_tumbler();
                 self.refresh_tumbler_look();
@@ -88,6 +89,84 @@ impl App {
                 );
             }
             Err(e) => self.tell(format!("cannot load {name}: {e:#}")),
+        }
+    }
+
+    /// R: starts recording the inputs, or stops and writes them to a file
+    /// beside the screenshots.
+    pub(super) fn toggle_recording(&mut self) {
+        if !self.sandbox.recording() {
+            self.sandbox.start_recording();
+            self.record_camera();
+            self.log.say(
+                "recording",
+                json!({ "on": true, "tick": self.sandbox.ticks() }),
+            );
+            self.tell("recording the inputs: R again to stop".into());
+            return;
+        }
+        let Some(log) = self.sandbox.stop_recording() else {
+            return;
+        };
+        let stamp = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_secs());
+        let path = self
+            .options
+            .screenshot_dir
+            .join(format!("rolypoly-{stamp}-{}.replay", log.to_tick));
+        match log.write(&path) {
+            Ok(()) => {
+                self.log.say(
+                    "recorded",
+                    json!({ "path": path.display().to_string(), "from_tick": log.from_tick, "to_tick": log.to_tick, "digest": log.end_digest }),
+                );
+                self.tell(format!(
+                    "recorded {}: rolypoly replay {0} plays it",
+                    path.display()
+                ));
+            }
+            Err(e) => self.tell(format!("{e:#}")),
+        }
+    }
+
+    /// In a replay: the recorded camera; at its end, the state checked
+    /// against the recording's, and time paused there.
+    pub(super) fn follow_replay(&mut self) {
+        if let Some(pose) = self.sandbox.view_pose.take() {
+            self.camera = FlyCamera::posed(&pose, &self.camera.camera());
+        }
+        if self.sandbox.replaying() {
+            return;
+        }
+        let Some(expected) = self.options.replay_digest.take() else {
+            return;
+        };
+        let digest = self.sandbox.digest();
+        let identical = digest == expected;
+        self.sandbox.end_replay();
+        self.sandbox.playback.set_paused(true);
+        self.log.say(
+            "replay_end",
+            json!({ "tick": self.sandbox.ticks(), "digest": digest, "identical": identical }),
+        );
+        self.tell(if identical {
+            "the replay's end: the same state as recorded (P goes on)".into()
+        } else {
+            format!("the replay's end: another state than recorded ({digest}, not {expected})")
+        });
+    }
+
+    /// While recording, the camera as an input, so that a replay sees
+    /// what the player saw.
+    pub(super) fn record_camera(&mut self) {
+        if self.sandbox.recording() {
+            let c = self.camera;
+            let _ = self.sandbox.apply(Input::Camera {
+                position: c.position.to_array(),
+                yaw: c.yaw,
+                pitch: c.pitch,
+            });
         }
     }
 

@@ -12,6 +12,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::CursorGrabMode;
 
 use super::App;
+use crate::sandbox::Input;
 use crate::window::panel::{fits, too_small};
 use rolypoly_render::Camera;
 
@@ -134,20 +135,23 @@ impl App {
                 }
             }
             KeyCode::KeyF => {
-                if self.sandbox.sim.world.fireball().is_some() {
-                    self.sandbox.sim.world.remove_fireball();
+                let input = if self.sandbox.world().fireball().is_some() {
+                    Input::FireballOff
                 } else {
-                    let from = self.camera.position + self.camera.forward() * 0.6;
-                    self.sandbox
-                        .sim
-                        .world
-                        .launch_fireball(Some((from.as_dvec3(), self.camera.forward().as_dvec3())));
-                }
+                    let forward = self.camera.forward();
+                    let from = self.camera.position + forward * 0.6;
+                    Input::Fireball {
+                        from: from.as_dvec3().to_array(),
+                        direction: forward.as_dvec3().to_array(),
+                    }
+                };
+                let _ = self.sandbox.apply(input);
                 self.log.say(
                     "fireball",
-                    json!({ "on": self.sandbox.sim.world.fireball().is_some() }),
+                    json!({ "on": self.sandbox.world().fireball().is_some() }),
                 );
             }
+            KeyCode::KeyR => self.toggle_recording(),
             KeyCode::KeyG => {
                 let next = if self.mode == MouseMode::Grab {
                     MouseMode::Look
@@ -200,7 +204,9 @@ impl App {
                 self.cursor = at;
                 if let Some(height) = self.drag_height {
                     if let Some(target) = self.cursor_on_plane(height) {
-                        self.sandbox.sim.world.drag_to(target);
+                        let _ = self.sandbox.apply(Input::Drag {
+                            to: target.to_array(),
+                        });
                     }
                 }
             }
@@ -235,7 +241,10 @@ impl App {
                     .world
                     .pick(origin.as_dvec3(), dir.as_dvec3())
                 {
-                    self.sandbox.sim.world.grab(pick.tumbler, pick.point);
+                    let _ = self.sandbox.apply(Input::Grab {
+                        tumbler: pick.tumbler,
+                        point: pick.point.to_array(),
+                    });
                     self.drag_height = Some(pick.point.y);
                     let at = self.sandbox.sim.world.tumblers()[pick.tumbler].bottom_center();
                     self.log.say("grabbed", json!({ "tumbler": pick.tumbler, "at": [at.x, at.z], "point": pick.point.to_array() }));
@@ -273,7 +282,7 @@ impl App {
 
     pub(super) fn release_tumbler(&mut self) {
         if let Some(index) = self.sandbox.sim.world.grabbed() {
-            self.sandbox.sim.world.release();
+            let _ = self.sandbox.apply(Input::Release);
             let at = self.sandbox.sim.world.tumblers()[index].bottom_center();
             self.log
                 .say("released", json!({ "tumbler": index, "at": [at.x, at.z] }));

@@ -51,6 +51,9 @@ pub struct WindowOptions {
     /// The scene file given, offered in the panel's list beside the
     /// shipped scenes.
     pub scene_file: Option<PathBuf>,
+    /// For a replay: the digest of the recording's end state, to check the
+    /// replay's against.
+    pub replay_digest: Option<String>,
 }
 
 /// Opens the window on `sandbox` and runs until it is closed.
@@ -105,8 +108,10 @@ struct App {
     last_frame: Option<Instant>,
     hud_state: HudState,
     camera_logged: Instant,
-    /// The camera as last written to the event log.
+    /// The camera as last written to the event log, and as last given to
+    /// the sandbox's recording.
     camera_reported: FlyCamera,
+    camera_recorded: FlyCamera,
     screenshots: u32,
 }
 
@@ -121,6 +126,7 @@ impl App {
             log: EventLog::new(options.log_events),
             camera,
             camera_reported: camera,
+            camera_recorded: camera,
             hud_state: HudState::new(options.seed, world.balls().len()),
             panel: Panel::new(options.scene_file.clone()),
             sandbox,
@@ -178,11 +184,18 @@ impl App {
         // After a stall the camera, like the world, does not leap ahead.
         self.walk(elapsed.min(MAX_CATCH_UP) as f32);
         self.simulate(elapsed);
+        if self.options.replay_digest.is_some() {
+            self.follow_replay();
+        }
         // Report the camera when it has moved or turned, at most five times a second.
         if self.camera != self.camera_reported && self.camera_logged.elapsed().as_secs_f64() > 0.2 {
             self.camera_logged = now;
             self.camera_reported = self.camera;
             self.log_camera();
+        }
+        if self.camera != self.camera_recorded {
+            self.camera_recorded = self.camera;
+            self.record_camera();
         }
 
         let sim = &self.sandbox.sim;

@@ -1,0 +1,89 @@
+//! What a player does to the world, as data: each input the sandbox takes
+//! is kept with the tick it came before, so that a run can be written out
+//! and played again to the same bits (R, and `rolypoly replay`).
+
+use glam::{DVec3, Vec3};
+use rolypoly_physics::BuildError;
+use serde::{Deserialize, Serialize};
+
+use super::ThrowRefused;
+use crate::scene::{Scene, SceneError};
+
+/// One thing a player did that the simulation (or, for the camera, the
+/// view) follows. Vectors are in metres and world axes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Input {
+    /// F: the fireball from `from` along `direction`.
+    Fireball { from: [f64; 3], direction: [f64; 3] },
+    /// F again: the fireball gone.
+    FireballOff,
+    /// B: a ball thrown from `from` along `direction` at `speed` (m/s).
+    Throw {
+        from: [f64; 3],
+        direction: [f64; 3],
+        speed: f64,
+    },
+    /// The left button on tumbler `tumbler` at `point`.
+    Grab { tumbler: usize, point: [f64; 3] },
+    /// The held tumbler pulled towards `to`.
+    Drag { to: [f64; 3] },
+    /// The left button let go.
+    Release,
+    /// I.
+    Restart,
+    /// The panel's settings, as the text of a scene file.
+    Settings { scene: String },
+    /// Another scene chosen, as the text of its file.
+    Load { name: String, scene: String },
+    /// Where the camera is and looks: only the view follows it.
+    Camera {
+        position: [f32; 3],
+        yaw: f32,
+        pitch: f32,
+    },
+}
+
+/// Why an input changed nothing.
+#[derive(Debug, thiserror::Error)]
+pub enum Refused {
+    #[error(transparent)]
+    Throw(#[from] ThrowRefused),
+    #[error("cannot build the scene: {0}")]
+    Build(#[from] BuildError),
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+}
+
+/// Where the camera is and looks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraPose {
+    pub position: Vec3,
+    pub yaw: f32,
+    pub pitch: f32,
+}
+
+/// An input with the number of ticks done when it came.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Timed {
+    pub tick: u64,
+    #[serde(flatten)]
+    pub input: Input,
+}
+
+/// Everything since the world's line began (the sandbox made, or a scene
+/// loaded): the scene it began from and the inputs since.
+#[derive(Clone, Debug)]
+pub struct Journal {
+    pub scene: Scene,
+    pub name: String,
+    pub inputs: Vec<Timed>,
+}
+
+pub(super) fn array(v: DVec3) -> [f64; 3] {
+    v.to_array()
+}
+
+pub(super) fn vector(a: [f64; 3]) -> DVec3 {
+    DVec3::from_array(a)
+}
