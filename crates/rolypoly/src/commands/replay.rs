@@ -6,8 +6,8 @@ use anyhow::Context;
 use rolypoly_render::Camera;
 
 use crate::cli::{ReplayArgs, WindowArgs, steps_for};
-use crate::record::{frame_count, write_clip};
-use crate::render::Frames;
+use crate::clip::{frame_count, write_clip};
+use crate::frames::Frames;
 use crate::sandbox::{ReplayLog, Sandbox};
 use crate::window::fly_camera::FlyCamera;
 

@@ -1,6 +1,6 @@
-//! `rolypoly record`: a run drawn frame by frame off-screen into a clip, an
-//! animated GIF, an MP4 video (through the program ffmpeg) or a folder of
-//! numbered PNGs.
+//! Clips: frames drawn off-screen written as an animated GIF, an MP4 video
+//! (through the program ffmpeg) or a folder of numbered PNGs, with a
+//! progress bar (`record` and `replay`).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -11,11 +11,6 @@ use anyhow::Context;
 use image::codecs::gif::{GifEncoder, Repeat};
 use image::{Delay, Frame, RgbaImage};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rolypoly_render::LightConfig;
-
-use crate::cli::{RecordArgs, steps_for};
-use crate::render::Frames;
-use crate::simulation::Simulation;
 
 /// How finely the GIF encoder looks for each frame's 256 colours: 1 is
 /// the finest and slowest, 30 the coarsest. At 10 a frame of 640 x 360
@@ -54,35 +49,6 @@ impl ClipKind {
             ),
         }
     }
-}
-
-/// Records `sim` from now for `args.seconds`, `args.fps` frames a
-/// simulated second, into `args.out`.
-pub fn record(sim: &mut Simulation, light: &LightConfig, args: &RecordArgs) -> anyhow::Result<()> {
-    if args.frame.fireball {
-        sim.world.launch_fireball(None);
-    }
-    let mut frames = Frames::new(sim.world.config(), &args.frame, args.size)?;
-    let count = frame_count(args.seconds, args.fps);
-    let dt = sim.world.config().solver.dt;
-    let mut steps_done = 0;
-    write_clip(&args.out, args.size, args.fps, count, |k| {
-        // Frame k shows the moment k / fps, the same step `render --time`
-        // would stop at.
-        let steps = steps_for(f64::from(k) / f64::from(args.fps), dt);
-        sim.ticks(steps - steps_done);
-        steps_done = steps;
-        frames.draw(sim, light)
-    })?;
-    let (width, height) = args.size;
-    println!(
-        "wrote {} ({count} frames of {width}x{height} at {} frames per second, t = 0 to {:.3} s, {})",
-        args.out.display(),
-        args.fps,
-        sim.world.time(),
-        frames.describe()
-    );
-    Ok(())
 }
 
 /// Writes the `count` frames that `frame(k)` draws, `size` each, `fps` a

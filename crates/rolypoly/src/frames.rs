@@ -1,5 +1,6 @@
-//! `rolypoly render` and `rolypoly make-tumbler-obj`: frames and meshes
-//! without a window.
+//! Frames drawn off-screen for `render`, `record` and `replay`: the
+//! renderer for a scene, the camera the flags choose, a tumbler mesh read
+//! from an OBJ file.
 
 use std::path::Path;
 
@@ -8,31 +9,10 @@ use glam::Vec3;
 use rolypoly_physics::WorldConfig;
 use rolypoly_render::{Camera, LightConfig, MeshData, RenderSettings, Snapshot};
 
-use crate::cli::{FrameArgs, MakeTumblerObjArgs, RenderArgs, steps_for};
+use crate::cli::FrameArgs;
 use crate::simulation::Simulation;
 
-/// Runs `sim` to the requested time and writes that frame.
-pub fn render(sim: &mut Simulation, light: &LightConfig, args: &RenderArgs) -> anyhow::Result<()> {
-    if args.frame.fireball {
-        sim.world.launch_fireball(None);
-    }
-    sim.ticks(steps_for(args.time, sim.world.config().solver.dt));
-    let mut frames = Frames::new(sim.world.config(), &args.frame, args.size)?;
-    let image = frames.draw(sim, light)?;
-    image
-        .save_with_format(&args.out, image::ImageFormat::Png)
-        .with_context(|| format!("cannot write `{}`", args.out.display()))?;
-    let (width, height) = args.size;
-    println!(
-        "wrote {} ({width}x{height}, t = {:.3} s, {})",
-        args.out.display(),
-        sim.world.time(),
-        frames.describe()
-    );
-    Ok(())
-}
-
-/// What draws the frames of `render` and `record`: the off-screen renderer
+/// What draws the frames of `render`, `record` and `replay`: the off-screen renderer
 /// for the scene, and the camera.
 pub struct Frames {
     snapshot: Snapshot,
@@ -116,19 +96,4 @@ pub fn read_obj(path: &Path) -> anyhow::Result<MeshData> {
         &text,
         &path.display().to_string(),
     )?)
-}
-
-/// Writes the tumbler mesh made from the scene's spheres.
-pub fn make_tumbler_obj(config: &WorldConfig, args: &MakeTumblerObjArgs) -> anyhow::Result<()> {
-    let mesh = rolypoly_render::tumbler_mesh(&config.tumblers.spheres);
-    let text = rolypoly_render::to_obj(&mesh, rolypoly_render::OBJ_HEADER);
-    std::fs::write(&args.out, text)
-        .with_context(|| format!("cannot write `{}`", args.out.display()))?;
-    println!(
-        "wrote {} ({} vertices, {} triangles)",
-        args.out.display(),
-        mesh.vertices.len(),
-        mesh.indices.len() / 3
-    );
-    Ok(())
 }

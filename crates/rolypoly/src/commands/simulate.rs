@@ -1,13 +1,62 @@
-//! Headless simulation (SPEC A3): step a world a fixed number of steps,
-//! optionally writing a trace, and summarise the result.
+//! `rolypoly simulate` (SPEC A3): step a world a fixed number of steps
+//! without a window, optionally writing a trace, and summarise the result.
 
 use std::fmt;
-use std::io::Write;
+use std::io::{self, Write};
 use std::time::{Duration, Instant};
 
+use anyhow::Context;
 use rolypoly_physics::{EventKind, World};
 
-use crate::trace::{TraceError, TraceWriter, event_kind_name};
+use crate::cli::{SimulateArgs, steps_for};
+use crate::trace::{self, TraceError, TraceWriter, event_kind_name};
+
+/// `rolypoly simulate` on `world`: its steps, a trace if asked for, and
+/// the summary.
+pub fn simulate(
+    world: &mut World,
+    scene_name: &str,
+    args: &SimulateArgs,
+    seed: u64,
+    dt: f64,
+) -> anyhow::Result<()> {
+    let steps = match (args.length.steps, args.length.seconds) {
+        (Some(steps), _) => steps,
+        (None, Some(seconds)) => steps_for(seconds, dt),
+        // clap requires one of the two.
+        (None, None) => anyhow::bail!("give the length of the run with --steps or --seconds"),
+    };
+    let options = Options {
+        steps,
+        fireball: args.fireball,
+        seed,
+        every: args.every,
+    };
+    match &args.trace {
+        None => {
+            let summary = run::<io::Sink>(world, scene_name, &options, None)?;
+            print_summary(&summary)
+        }
+        Some(path) => {
+            let mut writer = trace::create(path)?;
+            let summary = run(world, scene_name, &options, Some(&mut writer))?;
+            writer.finish()?;
+            // Standard output carries the trace itself; keep it pure JSON Lines.
+            if trace::is_stdout(path) {
+                Ok(())
+            } else {
+                print_summary(&summary)
+            }
+        }
+    }
+}
+
+fn print_summary(summary: &Summary) -> anyhow::Result<()> {
+    let mut out = io::stdout().lock();
+    writeln!(out, "{summary}")
+        .and_then(|()| out.flush())
+        .context("cannot write to standard output")
+}
 
 /// A ball slower than this (m/s) counts as at rest in the summary.
 pub const REST_SPEED: f64 = 0.02;

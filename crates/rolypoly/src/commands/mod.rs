@@ -1,0 +1,126 @@
+//! The program's commands, a file each: the window (no subcommand),
+//! `simulate`, `render`, `record`, `replay` and `make-tumbler-obj`; and the
+//! checks every command's outputs pass before any work.
+
+use std::path::Path;
+
+use anyhow::Context;
+use rolypoly_physics::World;
+
+use crate::cli::{Cli, Command};
+use crate::scene::{self, BUILTIN_ORIGIN};
+use crate::simulation::Simulation;
+use crate::{clip, trace};
+
+mod make_tumbler_obj;
+mod record;
+mod render;
+mod replay;
+mod run;
+mod simulate;
+
+/// Runs the program for parsed arguments.
+pub fn run(cli: &Cli) -> anyhow::Result<()> {
+    check_outputs(cli)?;
+    if let Some(Command::Replay(args)) = &cli.command {
+        // A recording carries its own scene and seed.
+        return replay::replay(args, &cli.window);
+    }
+    let scene_args = &cli.scene;
+    let path = scene_args.scene.as_deref();
+    let scene = scene::load_scene_with(path, &scene_args.overrides())?;
+    let scene_name = match path {
+        Some(path) => format!("scene `{}`", path.display()),
+        None => format!("the {BUILTIN_ORIGIN}"),
+    };
+    let seed = scene_args.seed;
+    let mut world = World::new(scene.world.clone(), seed)
+        .with_context(|| format!("cannot build {scene_name}"))?;
+    match &cli.command {
+        None => run::window(world, scene, path, seed, &cli.window),
+        Some(Command::Simulate(args)) => {
+            simulate::simulate(&mut world, &scene_name, args, seed, scene.world.solver.dt)
+        }
+        Some(Command::Render(args)) => render::render(
+            &mut Simulation::new(world, scene.effects, seed),
+            &args.frame.effects.apply(&scene.light),
+            args,
+        ),
+        Some(Command::Record(args)) => record::record(
+            &mut Simulation::new(world, scene.effects, seed),
+            &args.frame.effects.apply(&scene.light),
+            args,
+        ),
+        Some(Command::Replay(args)) => replay::replay(args, &cli.window),
+        Some(Command::MakeTumblerObj(args)) => {
+            make_tumbler_obj::make_tumbler_obj(world.config(), args)
+        }
+    }
+}
+
+/// Fails at once, before any work, where the run's output could never be
+/// written: a file in a folder that does not exist, or screenshots into a
+/// folder that is not one.
+fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
+    let file_in_folder = |out: &Path| {
+        let folder = out.parent().filter(|p| !p.as_os_str().is_empty());
+        match folder {
+            Some(folder) if !folder.is_dir() => anyhow::bail!(
+                "cannot write `{}`: the folder `{}` does not exist",
+                out.display(),
+                folder.display()
+            ),
+            _ => Ok(()),
+        }
+    };
+    match &cli.command {
+        None => {
+            let dir = &cli.window.screenshot_dir;
+            if dir.is_dir() {
+                Ok(())
+            } else {
+                anyhow::bail!(
+                    "--screenshot-dir `{}`: no such folder (F12 writes screenshots there)",
+                    dir.display()
+                )
+            }
+        }
+        Some(Command::Render(args)) => {
+            file_in_folder(&args.out)?;
+            named_for(&args.out, "png", "frames are PNG images")
+        }
+        Some(Command::Record(args)) => {
+            // A folder of PNGs is made if need be, in a folder that is.
+            clip::ClipKind::of(&args.out)?;
+            file_in_folder(&args.out)
+        }
+        Some(Command::Replay(args)) => match &args.out {
+            Some(out) => {
+                clip::ClipKind::of(out)?;
+                file_in_folder(out)
+            }
+            None => Ok(()),
+        },
+        Some(Command::MakeTumblerObj(args)) => {
+            file_in_folder(&args.out)?;
+            named_for(&args.out, "obj", "the mesh is a Wavefront OBJ file")
+        }
+        Some(Command::Simulate(args)) => match &args.trace {
+            Some(trace) if !trace::is_stdout(trace) => file_in_folder(trace),
+            _ => Ok(()),
+        },
+    }
+}
+
+/// An output is written in one format whatever its name says, so a name
+/// that says another (`frame.jpg` for a PNG) is refused rather than left
+/// to mislead. A name without an extension says nothing and is kept.
+fn named_for(out: &Path, extension: &str, format: &str) -> anyhow::Result<()> {
+    match out.extension() {
+        Some(ext) if !ext.eq_ignore_ascii_case(extension) => anyhow::bail!(
+            "cannot write `{}`: {format}; name the file `.{extension}`",
+            out.display()
+        ),
+        _ => Ok(()),
+    }
+}

@@ -1,0 +1,29 @@
+//! `rolypoly render`: a run to a moment, that frame as a PNG.
+
+use anyhow::Context;
+use rolypoly_render::LightConfig;
+
+use crate::cli::{RenderArgs, steps_for};
+use crate::frames::Frames;
+use crate::simulation::Simulation;
+
+/// Runs `sim` to the requested time and writes that frame.
+pub fn render(sim: &mut Simulation, light: &LightConfig, args: &RenderArgs) -> anyhow::Result<()> {
+    if args.frame.fireball {
+        sim.world.launch_fireball(None);
+    }
+    sim.ticks(steps_for(args.time, sim.world.config().solver.dt));
+    let mut frames = Frames::new(sim.world.config(), &args.frame, args.size)?;
+    let image = frames.draw(sim, light)?;
+    image
+        .save_with_format(&args.out, image::ImageFormat::Png)
+        .with_context(|| format!("cannot write `{}`", args.out.display()))?;
+    let (width, height) = args.size;
+    println!(
+        "wrote {} ({width}x{height}, t = {:.3} s, {})",
+        args.out.display(),
+        sim.world.time(),
+        frames.describe()
+    );
+    Ok(())
+}
