@@ -177,7 +177,11 @@ impl Panel {
 
         ui.separator();
         ui.strong("Save as");
-        ui.text_edit_singleline(&mut self.save_path);
+        ui.horizontal(|ui| {
+            let label = ui.label("file");
+            ui.text_edit_singleline(&mut self.save_path)
+                .labelled_by(label.id);
+        });
         if ui.button("save the settings").clicked() {
             action = Some(PanelAction::Save(PathBuf::from(self.save_path.trim())));
         }
@@ -291,6 +295,7 @@ fn light_settings(ui: &mut egui::Ui, scene: &mut Scene) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use egui_kittest::kittest::Queryable as _;
 
     /// One frame of the panel in a headless egui context of `size` points.
     fn frame(panel: &mut Panel, sandbox: &mut Sandbox, size: [f32; 2]) -> egui::FullOutput {
@@ -332,6 +337,108 @@ mod tests {
         panel.open = true;
         let output = frame(&mut panel, &mut sandbox, [200.0, 100.0]);
         assert!(output.shapes.is_empty());
+    }
+
+    /// The panel and what it drives, as the window holds them.
+    struct Toy {
+        panel: Panel,
+        sandbox: Sandbox,
+        actions: Vec<PanelAction>,
+    }
+
+    /// The open panel in a test harness tall enough to show it whole.
+    fn harness(seed: u64) -> egui_kittest::Harness<'static, Toy> {
+        let mut panel = Panel::new(None);
+        panel.open = true;
+        let toy = Toy {
+            panel,
+            sandbox: Sandbox::new(Scene::default(), "default.toml", seed).unwrap(),
+            actions: Vec::new(),
+        };
+        egui_kittest::Harness::builder()
+            .with_size([1280.0, 2400.0])
+            .build_ui_state(
+                |ui, toy: &mut Toy| {
+                    if let Some(action) = toy.panel.show(ui, &mut toy.sandbox) {
+                        toy.actions.push(action);
+                    }
+                },
+                toy,
+            )
+    }
+
+    /// The slider of the setting labelled `label`.
+    fn slider<'h>(
+        h: &'h egui_kittest::Harness<'static, Toy>,
+        label: &'h str,
+    ) -> egui_kittest::Node<'h> {
+        h.get(
+            egui_kittest::kittest::By::new()
+                .label(label)
+                .role(egui::accesskit::Role::Slider),
+        )
+    }
+
+    #[test]
+    fn the_gravity_slider_sets_the_next_steps_acceleration() {
+        for (seed, gravity) in [(1, 3.0), (2, 20.0)] {
+            let mut h = harness(seed);
+            slider(&h, "gravity, m/s²").set_value_accesskit(gravity);
+            h.run();
+            let s = &mut h.state_mut().sandbox;
+            assert_eq!(s.scene().world.gravity, gravity);
+            assert!(!s.restart_pending());
+            // A ball at rest in mid-air falls at the new g from the next step.
+            let k = s
+                .throw(glam::DVec3::new(0.0, 2.5, 0.0), glam::DVec3::X)
+                .unwrap();
+            s.sim
+                .world
+                .balls_mut()
+                .set(k, glam::DVec3::new(0.0, 2.5, 0.0), glam::DVec3::ZERO);
+            s.tick();
+            let dt = s.world().config().solver.dt;
+            let v = s.world().balls().velocities()[k].y;
+            assert!((v + gravity * dt).abs() < 1e-12, "{v}");
+        }
+    }
+
+    #[test]
+    fn pause_step_and_speed_are_the_playbacks() {
+        let mut h = harness(3);
+        h.get_by_label("pause (P)").click();
+        h.run();
+        assert!(h.state().sandbox.playback.paused());
+        let before = h.state().sandbox.world().step_count();
+        h.get_by_label("step (.)").click();
+        h.run();
+        let s = &mut h.state_mut().sandbox;
+        assert_eq!(s.frame(1.0 / 60.0, Default::default), 1);
+        assert_eq!(s.world().step_count(), before + 1);
+        h.get_by_label("1/4").click();
+        h.run();
+        assert_eq!(h.state().sandbox.playback.scale(), 0.25);
+    }
+
+    #[test]
+    fn sizes_wait_for_the_restart_and_scenes_are_chosen_from_the_list() {
+        let mut h = harness(4);
+        slider(&h, "balls").set_value_accesskit(12.0);
+        h.run();
+        assert_eq!(h.state().sandbox.scene().world.balls.count, 12);
+        assert!(h.state().sandbox.restart_pending());
+        h.get_by_label("changes wait for a restart");
+        h.get_by_label("restart (I)").click();
+        h.run();
+        h.get_by_label("newtons-cradle.toml").click();
+        h.run();
+        assert_eq!(
+            h.state().actions,
+            [
+                PanelAction::Restart,
+                PanelAction::Load(SceneSource::Shipped(1))
+            ]
+        );
     }
 
     #[test]
