@@ -394,6 +394,38 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
         "{said}"
     );
     assert!(clip.join("frame-00000.png").is_file());
+    // In a window of its own, the replay ends in the recorded state too.
+    let in_window = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(["--log-events", "--window-size", "160x90", "replay"])
+        .arg(&replay_log)
+        .env("DISPLAY", &s.display)
+        .env_remove("WAYLAND_DISPLAY")
+        .env("XDG_RUNTIME_DIR", &runtime)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::inherit())
+        .spawn()
+        .expect("rolypoly replay opens a window");
+    let mut replay_window = Guard(in_window);
+    let replay_stdout = replay_window.0.stdout.take().expect("stdout");
+    let (send, ends) = channel();
+    std::thread::spawn(move || {
+        let end = BufReader::new(replay_stdout)
+            .lines()
+            .map_while(Result::ok)
+            .filter_map(|line| serde_json::from_str::<Value>(&line).ok())
+            .find(|v| v["event"] == "replay_end");
+        let _ = send.send(end);
+    });
+    let ended = ends
+        .recv_timeout(Duration::from_secs(90))
+        .ok()
+        .flatten()
+        .expect("the replay in the window reaches its end");
+    assert_eq!(ended["identical"], true, "{ended}");
+    assert_eq!(ended["digest"].as_str(), Some(digest), "{ended}");
+    assert_eq!(number(&ended, "tick"), number(&recorded, "to_tick"));
+    drop(replay_window);
+    s.xdotool(&["windowfocus", "--sync", &w]);
     s.xdotool(&["key", "f"]);
     s.expect("the fireball gone", |v| {
         v["event"] == "fireball" && v["on"] == false
