@@ -15,8 +15,11 @@ pub(crate) const PARALLEL_LIGHT_PASSES: usize = 32768;
 /// What colour a ball has taken on (P5): white until it hits something.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Tint {
+    /// The scene's ball colour.
     White,
+    /// The colour of the surface it hit last.
     Surface(Surface),
+    /// The colour of the tumbler it hit last.
     Tumbler(usize),
     /// The colour its scene gave placed ball `k`.
     Placed(usize),
@@ -94,38 +97,47 @@ impl Balls {
         }
     }
 
+    /// How many balls there are, caught ones included.
     pub fn len(&self) -> usize {
         self.position.len()
     }
 
+    /// Whether there are no balls.
     pub fn is_empty(&self) -> bool {
         self.position.is_empty()
     }
 
+    /// Each ball's centre (m).
     pub fn positions(&self) -> &[DVec3] {
         &self.position
     }
 
+    /// Each ball's velocity (m/s).
     pub fn velocities(&self) -> &[DVec3] {
         &self.velocity
     }
 
+    /// Each ball's angular velocity (rad/s).
     pub fn spins(&self) -> &[DVec3] {
         &self.spin
     }
 
+    /// Each ball's radius (m).
     pub fn radii(&self) -> &[f64] {
         &self.radius
     }
 
+    /// Each ball's mass (kg).
     pub fn masses(&self) -> &[f64] {
         &self.mass
     }
 
+    /// What colour each ball wears.
     pub fn tints(&self) -> &[Tint] {
         &self.tint
     }
 
+    /// Whether each ball is in play (the fireball catches balls).
     pub fn alive(&self) -> &[bool] {
         &self.alive
     }
@@ -135,6 +147,7 @@ impl Balls {
         sphere_inertia(self.mass[i], self.radius[i])
     }
 
+    /// Kinetic energy of ball `i`, moving and spinning (J).
     pub fn kinetic_energy(&self, i: usize) -> f64 {
         0.5 * self.mass[i] * self.velocity[i].length_squared()
             + 0.5 * self.inertia(i) * self.spin[i].length_squared()

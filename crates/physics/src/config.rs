@@ -31,12 +31,17 @@ pub struct RoomConfig {
 /// leaves out is the scene's: the balls' radius, mass and colour.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BallPlacement {
+    /// Where its centre starts (m).
     pub position: DVec3,
+    /// Its velocity at the start (m/s).
     pub velocity: DVec3,
     /// Angular velocity in rad/s (a ball sent rolling spins at v / r).
     pub spin: DVec3,
+    /// Its colour, if not the scene's ball colour.
     pub color: Option<Rgb>,
+    /// Its radius, if not the scene's (m).
     pub radius: Option<f64>,
+    /// Its mass, if not the scene's (kg).
     pub mass: Option<f64>,
 }
 
@@ -59,12 +64,15 @@ impl BallPlacement {
 pub struct BallsConfig {
     /// How many balls start at random (from the seed), besides the placed ones.
     pub count: usize,
+    /// Radius of every random ball (m).
     pub radius: f64,
+    /// Mass of every random ball (kg).
     pub mass: f64,
     /// Coefficient of restitution of a ball-ball collision (P2's damping factor).
     pub restitution: f64,
     /// Initial speeds are drawn uniformly from this range (m/s).
     pub speed_min: f64,
+    /// Fastest start of a random ball (m/s).
     pub speed_max: f64,
     /// The balls start in this share of the room's height, from the floor
     /// up (0 < share <= 1): a crowded room can start below the eye.
@@ -102,8 +110,11 @@ impl BallsConfig {
 /// height on that axis alone.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SphereSpec {
+    /// Height of the sphere's centre above the bottom sphere's centre, along the axis (m).
     pub height: f64,
+    /// Its radius (m).
     pub radius: f64,
+    /// Its mass (kg).
     pub mass: f64,
 }
 
@@ -112,9 +123,11 @@ pub struct SphereSpec {
 pub struct TumblerPlacement {
     /// x and z of the bottom sphere's centre.
     pub x: f64,
+    /// Where it stands along z (m).
     pub z: f64,
     /// Tilt axis (horizontal; normalised when used) and angle in degrees.
     pub tilt_axis: DVec3,
+    /// How far it leans at the start, about `tilt_axis` (degrees).
     pub tilt_deg: f64,
 }
 
@@ -124,6 +137,7 @@ pub struct TumblersConfig {
     /// The compound shape. The first sphere is the round bottom, which rests
     /// on the floor; every other sphere must be smaller than it.
     pub spheres: Vec<SphereSpec>,
+    /// Where each tumbler stands.
     pub placements: Vec<TumblerPlacement>,
     /// Restitution of impacts between a tumbler and anything.
     pub restitution: f64,
@@ -131,16 +145,20 @@ pub struct TumblersConfig {
     pub floor_friction: f64,
     /// Rate (1/s) at which rocking and spinning lose energy; 0 rocks forever.
     pub damping: f64,
+    /// The tumblers' colours, in turn.
     pub colors: Vec<Rgb>,
 }
 
 /// The fireball (P8): constant speed, no gravity, a ball's mass.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FireballConfig {
+    /// Its radius (m).
     pub radius: f64,
+    /// The speed it keeps (m/s).
     pub speed: f64,
     /// Where `F` launches it from when the caller does not pass a position.
     pub spawn: DVec3,
+    /// Where it flies from the spawn point.
     pub direction: DVec3,
     /// What a hit does to a ball: `true`, the ball is caught (it leaves the
     /// simulation at once; the effects draw it collapsing) and comes back
@@ -179,11 +197,17 @@ pub struct SolverConfig {
 pub struct WorldConfig {
     /// Gravitational acceleration in m/s^2, acting along -y.
     pub gravity: f64,
+    /// The room's size, materials and colours.
     pub room: RoomConfig,
+    /// The balls.
     pub balls: BallsConfig,
+    /// The tumblers.
     pub tumblers: TumblersConfig,
+    /// The fireball.
     pub fireball: FireballConfig,
+    /// The hand that drags tumblers.
     pub grab: GrabConfig,
+    /// The fixed step and the contact solver.
     pub solver: SolverConfig,
 }
 

@@ -7,27 +7,44 @@ use glam::DVec3;
 /// Which bodies met.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum EventKind {
+    /// A ball hit one of the room's surfaces.
     BallSurface {
+        /// The ball's number.
         ball: usize,
+        /// The surface.
         surface: Surface,
     },
+    /// Two balls hit each other.
     BallBall {
+        /// One ball's number.
         a: usize,
+        /// The other's.
         b: usize,
     },
+    /// A ball hit a tumbler.
     BallTumbler {
+        /// The ball's number.
         ball: usize,
+        /// The tumbler's number.
         tumbler: usize,
+        /// Which of its six spheres.
         sphere: usize,
     },
+    /// The fireball hit a surface.
     FireballSurface {
+        /// The surface.
         surface: Surface,
     },
+    /// The fireball caught a ball.
     FireballBall {
+        /// The ball's number.
         ball: usize,
     },
+    /// The fireball hit a tumbler.
     FireballTumbler {
+        /// The tumbler's number.
         tumbler: usize,
+        /// Which of its six spheres.
         sphere: usize,
     },
 }
@@ -35,6 +52,7 @@ pub enum EventKind {
 /// One impact: where, along which normal, and how hard.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Event {
+    /// Which bodies met.
     pub kind: EventKind,
     /// The contact point in world space.
     pub point: DVec3,

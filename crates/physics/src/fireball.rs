@@ -3,11 +3,16 @@
 
 use glam::DVec3;
 
+/// The fireball: a sphere flying at constant speed through the room.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Fireball {
+    /// Its centre (m).
     pub position: DVec3,
+    /// Its velocity (m/s).
     pub velocity: DVec3,
+    /// Its radius (m).
     pub radius: f64,
+    /// The mass it strikes with (kg).
     pub mass: f64,
     /// The constant speed it keeps whatever it hits.
     pub speed: f64,
@@ -25,6 +30,7 @@ impl Fireball {
         self.velocity = dir * self.speed;
     }
 
+    /// Kinetic energy of its flight (J).
     pub fn kinetic_energy(&self) -> f64 {
         0.5 * self.mass * self.speed * self.speed
     }

@@ -15,6 +15,8 @@
 //! assert!(world.time() > 0.99 && events > 0);
 //! ```
 
+#![warn(missing_docs)]
+
 mod balls;
 mod broadphase;
 mod ccd;

@@ -6,7 +6,9 @@ use glam::DVec3;
 /// takes on when it hits it (P5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Surface {
+    /// The floor, at the room's lowest y.
     Floor,
+    /// The ceiling, at its highest y.
     Ceiling,
     /// The wall at -x.
     Left,
@@ -19,6 +21,7 @@ pub enum Surface {
 }
 
 impl Surface {
+    /// All six, in the order of `RoomConfig::colors`.
     pub const ALL: [Surface; 6] = [
         Surface::Floor,
         Surface::Ceiling,
@@ -28,10 +31,12 @@ impl Surface {
         Surface::Front,
     ];
 
+    /// Its place in [`Surface::ALL`].
     pub fn index(self) -> usize {
         self as usize
     }
 
+    /// Its name in scene files: `floor`, `left`...
     pub fn name(self) -> &'static str {
         match self {
             Surface::Floor => "floor",
@@ -59,11 +64,14 @@ impl Surface {
 /// The room's inner box: floor at y = 0, centred on x = z = 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Room {
+    /// The corner with the smallest coordinates (m).
     pub min: DVec3,
+    /// The corner with the largest (m).
     pub max: DVec3,
 }
 
 impl Room {
+    /// A room of `size`, centred on x and z, its floor at y = 0.
     pub fn new(size: DVec3) -> Room {
         Room {
             min: DVec3::new(-0.5 * size.x, 0.0, -0.5 * size.z),
@@ -71,6 +79,7 @@ impl Room {
         }
     }
 
+    /// Its width, height and depth (m).
     pub fn size(&self) -> DVec3 {
         self.max - self.min
     }

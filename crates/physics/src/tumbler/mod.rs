@@ -103,6 +103,7 @@ impl Tumbler {
         self.center
     }
 
+    /// Its orientation, body frame to world.
     pub fn orientation(&self) -> DQuat {
         self.orientation
     }
@@ -117,10 +118,12 @@ impl Tumbler {
         self.axis().y.clamp(-1.0, 1.0).acos()
     }
 
+    /// Its centre of mass in the world (m).
     pub fn center_of_mass(&self) -> DVec3 {
         self.center + self.orientation * self.com_body
     }
 
+    /// The velocity of its centre of mass (m/s).
     pub fn linear_velocity(&self) -> DVec3 {
         self.center_velocity
             + self
@@ -128,6 +131,7 @@ impl Tumbler {
                 .cross(self.orientation * self.com_body)
     }
 
+    /// Its angular velocity (rad/s).
     pub fn angular_velocity(&self) -> DVec3 {
         self.angular_velocity
     }
@@ -142,10 +146,12 @@ impl Tumbler {
         self.center_velocity - self.bottom_radius * self.angular_velocity.cross(DVec3::Y)
     }
 
+    /// Whether its bottom slides over the floor rather than rolls.
     pub fn sliding(&self) -> bool {
         matches!(self.mode, FloorMode::Sliding(_))
     }
 
+    /// The hand's hold on it, if held.
     pub fn grip(&self) -> Option<Grip> {
         self.grip
     }
@@ -219,6 +225,7 @@ impl Tumbler {
         self.center_velocity += r.center_velocity * impulse;
     }
 
+    /// Kinetic energy, moving and turning (J).
     pub fn kinetic_energy(&self, shape: &TumblerShape) -> f64 {
         let v = self.linear_velocity();
         let w = self.angular_velocity;

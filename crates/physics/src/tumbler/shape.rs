@@ -8,7 +8,9 @@ use glam::{DMat3, DVec3};
 /// spheres with the parallel-axis theorem.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TumblerShape {
+    /// The six spheres it is made of.
     pub spheres: Vec<SphereSpec>,
+    /// Total mass (kg).
     pub mass: f64,
     /// Centre of mass in the body frame: `(0, -a, 0)`.
     pub center_of_mass: DVec3,
@@ -21,10 +23,12 @@ pub struct TumblerShape {
     /// A sphere around all six spheres (centre on the axis, body frame) for
     /// cheap rejection before the six sphere tests (P7).
     pub bound_height: f64,
+    /// Radius of that sphere (m).
     pub bound_radius: f64,
 }
 
 impl TumblerShape {
+    /// The shape made of `spheres`, sphere 0 its round bottom.
     pub fn new(spheres: &[SphereSpec]) -> TumblerShape {
         let mass: f64 = spheres.iter().map(|s| s.mass).sum();
         let com_y = spheres.iter().map(|s| s.mass * s.height).sum::<f64>() / mass;

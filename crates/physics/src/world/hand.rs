@@ -9,7 +9,9 @@ use super::World;
 /// A tumbler hit by a pick ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pick {
+    /// The tumbler hit.
     pub tumbler: usize,
+    /// Where the ray hit it (m).
     pub point: DVec3,
     /// Distance along the ray.
     pub distance: f64,

@@ -74,11 +74,14 @@ impl std::error::Error for BuildError {}
 /// Kinetic and potential energy (potential measured from the floor).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Energy {
+    /// Energy of motion, moving and turning (J).
     pub kinetic: f64,
+    /// Energy of height above the floor (J).
     pub potential: f64,
 }
 
 impl Energy {
+    /// Kinetic plus potential (J).
     pub fn total(&self) -> f64 {
         self.kinetic + self.potential
     }
@@ -139,6 +142,7 @@ where
     total
 }
 
+/// Everything in the room, and the fixed step that moves it.
 pub struct World {
     config: WorldConfig,
     room: Room,
@@ -272,22 +276,27 @@ impl World {
         Ok(world)
     }
 
+    /// The configuration it was built from, with the live settings taken since.
     pub fn config(&self) -> &WorldConfig {
         &self.config
     }
 
+    /// The room.
     pub fn room(&self) -> &Room {
         &self.room
     }
 
+    /// Simulated time (s).
     pub fn time(&self) -> f64 {
         self.time
     }
 
+    /// Steps taken.
     pub fn step_count(&self) -> u64 {
         self.steps
     }
 
+    /// The balls.
     pub fn balls(&self) -> &Balls {
         &self.balls
     }
@@ -297,14 +306,17 @@ impl World {
         &mut self.balls
     }
 
+    /// The tumblers.
     pub fn tumblers(&self) -> &[Tumbler] {
         &self.tumblers
     }
 
+    /// The shape all tumblers share.
     pub fn tumbler_shape(&self) -> &TumblerShape {
         &self.shape
     }
 
+    /// The fireball, while it flies.
     pub fn fireball(&self) -> Option<&Fireball> {
         self.fireball.as_ref()
     }
@@ -379,6 +391,7 @@ impl World {
         self.fireball = None;
     }
 
+    /// Total kinetic and potential energy of every body.
     pub fn energy(&self) -> Energy {
         let g = self.config.gravity;
         let floor = self.room.min.y;
