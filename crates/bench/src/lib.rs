@@ -2,6 +2,8 @@
 //! that compare them: speed, and how well each keeps the balls apart, inside
 //! the box and at rest. `cargo bench -p rolypoly-bench` prints the table.
 
+#![warn(missing_docs)]
+
 pub mod ours;
 pub mod pit;
 pub mod quality;

@@ -5,6 +5,7 @@ use rolypoly_physics::{World, WorldConfig};
 
 use crate::pit::{Pit, PitEngine};
 
+/// The pit as a rolypoly world.
 pub struct OurPit {
     world: World,
 }
@@ -33,6 +34,7 @@ impl OurPit {
         Ok(OurPit { world })
     }
 
+    /// The world, to measure its quality.
     pub fn world(&self) -> &World {
         &self.world
     }

@@ -6,7 +6,9 @@ use glam::DVec3;
 /// One ball's starting state.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Start {
+    /// Where its centre starts (m).
     pub position: DVec3,
+    /// Its velocity at the start (m/s).
     pub velocity: DVec3,
 }
 
@@ -14,22 +16,30 @@ pub struct Start {
 /// y = 0, centred on x = z = 0).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pit {
+    /// Every ball's radius (m).
     pub radius: f64,
+    /// Every ball's mass (kg).
     pub mass: f64,
     /// Restitution of every contact, ball-ball and ball-wall.
     pub restitution: f64,
     /// Coulomb friction between a ball and a wall; balls slide on each other
     /// without friction.
     pub wall_friction: f64,
+    /// Gravitational acceleration, along -y (m/s²).
     pub gravity: f64,
+    /// The fixed time step (s).
     pub dt: f64,
+    /// The box's inner size (m).
     pub size: DVec3,
+    /// Each ball's starting state.
     pub start: Vec<Start>,
 }
 
 /// Advances a pit one step at a time and reads the balls back.
 pub trait PitEngine {
+    /// The engine's name, as the table prints it.
     fn name(&self) -> String;
+    /// Advances the pit by one time step.
     fn step(&mut self);
     /// Writes every ball's position and linear velocity, in `Pit::start` order.
     fn read(&self, positions: &mut Vec<DVec3>, velocities: &mut Vec<DVec3>);

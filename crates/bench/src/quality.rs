@@ -9,6 +9,7 @@ use crate::pit::Pit;
 /// A ball is at rest below this speed (m/s).
 pub const REST_SPEED: f64 = 0.05;
 
+/// How well an engine keeps the pit's balls apart, inside the box and at rest.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Quality {
     /// Deepest overlap of two balls, or of a ball and a wall (metres).

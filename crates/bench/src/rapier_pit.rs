@@ -43,6 +43,7 @@ pub struct RapierPit {
 }
 
 impl RapierPit {
+    /// The pit as a Rapier world.
     pub fn new(pit: &Pit) -> RapierPit {
         let mut bodies = RigidBodySet::new();
         let mut colliders = ColliderSet::new();

@@ -5,6 +5,7 @@
 pub struct TrailConfig {
     /// A new cube comes after a random wait in this range (seconds).
     pub interval_min: f64,
+    /// The longest wait (seconds).
     pub interval_max: f64,
     /// How long a cube lives (seconds).
     pub life: f64,
@@ -21,6 +22,7 @@ pub struct WallHitConfig {
     pub rate: f64,
     /// Radius the ring reaches at the end of the event (metres).
     pub radius: f64,
+    /// How long a cube lives (seconds).
     pub life: f64,
     /// Cube size (metres) at its largest.
     pub size: f64,
@@ -29,24 +31,33 @@ pub struct WallHitConfig {
 /// The fireball hitting a ball (X4): cubes collapse onto the ball, then a burst.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BallHitConfig {
+    /// How long the event keeps spawning (seconds).
     pub duration: f64,
+    /// Cubes spawned per second while it lasts.
     pub rate: f64,
     /// Radius of the shell the cubes start on at the beginning of the event
     /// (metres); it shrinks to nothing by the end.
     pub radius: f64,
+    /// How long a cube lives (seconds).
     pub life: f64,
+    /// Cube size (metres) at its largest.
     pub size: f64,
     /// The energy burst at the end: its life and largest size.
     pub burst_life: f64,
+    /// The burst's largest size (metres).
     pub burst_size: f64,
 }
 
+/// Every constant of the particle effects.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EffectsConfig {
     /// Particles alive at once, at most (X5); spawning beyond fails and is counted.
     pub capacity: usize,
+    /// The fireball's trail.
     pub trail: TrailConfig,
+    /// The fireball hitting a wall.
     pub wall_hit: WallHitConfig,
+    /// The fireball hitting a ball.
     pub ball_hit: BallHitConfig,
 }
 

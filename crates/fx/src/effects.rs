@@ -15,8 +15,11 @@ use std::collections::VecDeque;
 /// A fireball hit on a wall (or a tumbler): a ring spreading in its plane.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WallHit {
+    /// Where it hit (m).
     pub centre: Vec3,
+    /// The surface's normal there.
     pub normal: Vec3,
+    /// Seconds since the hit.
     pub age: f32,
     debt: f32,
 }
@@ -25,9 +28,13 @@ pub struct WallHit {
 /// its centre, then burst.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BallHit {
+    /// The struck ball's centre (m).
     pub centre: Vec3,
+    /// Its radius as it was (m).
     pub ball_radius: f32,
+    /// Its colour as it was.
     pub ball_color: Vec3,
+    /// Seconds since the hit.
     pub age: f32,
     debt: f32,
 }
@@ -36,7 +43,9 @@ pub struct BallHit {
 /// the hit, fading to 0 over [`FLASH_SECONDS`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Flash {
+    /// Where the hit was (m).
     pub position: Vec3,
+    /// How strong the flash is now, 1 down to 0.
     pub strength: f32,
 }
 
@@ -46,13 +55,19 @@ pub const FLASH_SECONDS: f32 = 0.3;
 /// Counts for a HUD.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EffectsStats {
+    /// Particles alive now.
     pub live: usize,
+    /// Most alive at once.
     pub capacity: usize,
+    /// Spawns refused so far because the ring was full.
     pub dropped: u64,
+    /// Wall hits still spawning or alive.
     pub wall_hits: usize,
+    /// Ball hits still collapsing or bursting.
     pub ball_hits: usize,
 }
 
+/// The particle effects of the fireball: its trail and its hits, driven by the world's events.
 pub struct Effects {
     config: EffectsConfig,
     ring: ParticleRing,
@@ -70,6 +85,7 @@ pub struct Effects {
 const QUEUE_CAPACITY: usize = 64;
 
 impl Effects {
+    /// No particles yet, the random sequence drawn from `seed`.
     pub fn new(config: EffectsConfig, seed: u64) -> Effects {
         let blank = Particle::new(ParticleKind::Trail, Vec3::ZERO, 0.0, 0.0, 0.0);
         Effects {
@@ -84,6 +100,7 @@ impl Effects {
         }
     }
 
+    /// The constants it runs on.
     pub fn config(&self) -> &EffectsConfig {
         &self.config
     }
@@ -258,6 +275,7 @@ impl Effects {
         self.ring.live()
     }
 
+    /// The wall hits still going, oldest first.
     pub fn wall_hits(&self) -> impl Iterator<Item = &WallHit> {
         self.wall_hits.iter()
     }
@@ -295,6 +313,7 @@ impl Effects {
         self.time
     }
 
+    /// Counts for a HUD.
     pub fn stats(&self) -> EffectsStats {
         EffectsStats {
             live: self.ring.live().count(),

@@ -5,6 +5,8 @@
 //! It reads the physics' events and the fireball's state, and knows nothing
 //! of wgpu: the renderer draws what [`Effects`] and [`FireballLook`] say.
 
+#![warn(missing_docs)]
+
 mod config;
 mod effects;
 mod look;

@@ -3,16 +3,23 @@
 
 use glam::{Quat, Vec3};
 
+/// One crystal core turning inside the fireball.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Core {
+    /// Its centre (m).
     pub position: Vec3,
+    /// Its size (m).
     pub size: f32,
+    /// How it is turned.
     pub rotation: Quat,
 }
 
+/// One energy shell around the fireball.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shell {
+    /// Its radius now (m).
     pub radius: f32,
+    /// Its opacity now.
     pub alpha: f32,
 }
 
@@ -31,12 +38,16 @@ pub const SHELL_COLORS: [Vec3; 2] = [Vec3::new(3.0, 1.2, 0.15), Vec3::new(2.4, 0
 /// metre, so that it lights the floor it flies over.
 const LIGHT_PER_GLOW: f32 = 1.5;
 
+/// How the fireball looks at one moment: heart, cores and shells.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FireballLook {
+    /// The fireball's centre (m).
     pub centre: Vec3,
     /// Radius of the glowing heart.
     pub heart_radius: f32,
+    /// The eight crystal cores.
     pub cores: [Core; 8],
+    /// The inner and the outer shell.
     pub shells: [Shell; 2],
 }
 

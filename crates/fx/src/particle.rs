@@ -4,6 +4,7 @@
 
 use glam::Vec3;
 
+/// What a particle is for, which picks its curves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ParticleKind {
     /// Dropped along the fireball's path: shrinks and fades.
@@ -56,20 +57,27 @@ impl ParticleKind {
 /// One particle: a small glowing cube.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Particle {
+    /// What it is for.
     pub kind: ParticleKind,
     /// Where it was born, and where it goes: a collapse particle moves in a
     /// straight line from `origin` to `target` over its life; the others stay.
     pub origin: Vec3,
+    /// Where a collapse particle ends; the others' `origin`.
     pub target: Vec3,
+    /// Seconds since birth.
     pub age: f32,
+    /// Seconds it lives.
     pub life: f32,
+    /// Its size at the curve's 1 (metres).
     pub k_scale: f32,
+    /// Its alpha at the curve's 1.
     pub k_alpha: f32,
     /// A fixed random turn, so cubes do not all line up.
     pub spin: Vec3,
 }
 
 impl Particle {
+    /// A particle of `kind` born at `origin`, living `life` seconds, staying where it is.
     pub fn new(
         kind: ParticleKind,
         origin: Vec3,
@@ -94,18 +102,22 @@ impl Particle {
         (self.age / self.life).min(1.0)
     }
 
+    /// Whether it still lives.
     pub fn alive(&self) -> bool {
         self.age < self.life
     }
 
+    /// Where it is now.
     pub fn position(&self) -> Vec3 {
         self.origin.lerp(self.target, self.progress())
     }
 
+    /// Its size now (metres).
     pub fn size(&self) -> f32 {
         self.k_scale * self.kind.size(self.progress())
     }
 
+    /// Its opacity now, at most 1.
     pub fn alpha(&self) -> f32 {
         (self.k_alpha * self.kind.alpha(self.progress())).min(1.0)
     }

@@ -8,6 +8,7 @@ use crate::particle::Particle;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Full;
 
+/// Particles in a ring of fixed capacity, spawned at the tail, retired at the head.
 #[derive(Clone, Debug)]
 pub struct ParticleRing {
     slots: Vec<Particle>,
@@ -17,6 +18,7 @@ pub struct ParticleRing {
 }
 
 impl ParticleRing {
+    /// An empty ring of `capacity` slots (at least one), filled with `blank`.
     pub fn new(capacity: usize, blank: Particle) -> ParticleRing {
         ParticleRing {
             slots: vec![blank; capacity.max(1)],
@@ -26,6 +28,7 @@ impl ParticleRing {
         }
     }
 
+    /// How many particles it holds at most.
     pub fn capacity(&self) -> usize {
         self.slots.len()
     }
@@ -36,6 +39,7 @@ impl ParticleRing {
         self.len
     }
 
+    /// Whether it holds no particles.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
@@ -80,6 +84,7 @@ impl ParticleRing {
         self.iter().filter(|p| p.alive())
     }
 
+    /// Empties the ring (the count of refused spawns stays).
     pub fn clear(&mut self) {
         self.head = 0;
         self.len = 0;
