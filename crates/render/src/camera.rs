@@ -7,9 +7,12 @@ const OVERVIEW_FOV_DEG: f32 = 50.0;
 /// How far the overview looks down, in degrees.
 const OVERVIEW_TILT_DEG: f32 = 8.0;
 
+/// A pinhole camera: where it stands, what it looks at, how wide it sees.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
+    /// Where it stands (m).
     pub eye: Vec3,
+    /// The point it looks at (m).
     pub target: Vec3,
     /// Vertical field of view in degrees.
     pub fov_y_deg: f32,
@@ -38,6 +41,7 @@ impl Camera {
         }
     }
 
+    /// World to camera space.
     pub fn view(&self) -> Mat4 {
         glam::camera::rh::view::look_at_mat4(self.eye, self.target, self.up())
     }
@@ -68,6 +72,7 @@ impl Camera {
         )
     }
 
+    /// World to clip space for a picture `aspect` wide per unit of height.
     pub fn view_projection(&self, aspect: f32) -> Mat4 {
         self.projection(aspect) * self.view()
     }

@@ -16,29 +16,50 @@ pub enum RenderError {
          renderer, and a GPU's own driver needs the loader too), or try the OpenGL backend \
          with WGPU_BACKEND=gl"
     )]
-    NoAdapter { backends: String },
+    /// No adapter could be found.
+    NoAdapter {
+        /// The backends tried, in words.
+        backends: String,
+    },
     #[error("the graphics adapter {adapter} refused to open a device: {source}")]
+    /// The adapter would not open a device.
     NoDevice {
+        /// The adapter, in words.
         adapter: String,
+        /// What it said.
         #[source]
         source: wgpu::RequestDeviceError,
     },
     #[error("reading the rendered frame back failed: {0}")]
+    /// The frame could not be read back.
     Readback(String),
     #[error("tumbler mesh `{origin}`: {message}")]
-    Mesh { origin: String, message: String },
+    /// A tumbler mesh file is not usable.
+    Mesh {
+        /// The file.
+        origin: String,
+        /// What is wrong with it.
+        message: String,
+    },
     #[error("frame size {width}x{height} is not allowed: {reason}")]
+    /// A frame size that cannot be drawn.
     Size {
+        /// Asked width in pixels.
         width: u32,
+        /// Asked height in pixels.
         height: u32,
+        /// Why not.
         reason: String,
     },
 }
 
 /// An open device and its queue.
 pub struct Gpu {
+    /// The device.
     pub device: wgpu::Device,
+    /// Its queue.
     pub queue: wgpu::Queue,
+    /// The adapter it was opened on.
     pub adapter: wgpu::Adapter,
 }
 

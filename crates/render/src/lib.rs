@@ -7,6 +7,8 @@
 //!
 //! It draws a [`SceneView`], plain data read from the physics world.
 
+#![warn(missing_docs)]
+
 mod camera;
 mod gpu;
 mod instances;

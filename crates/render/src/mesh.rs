@@ -3,18 +3,24 @@
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
+/// One corner of a triangle, as the shaders read it.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct Vertex {
+    /// Where it is (m).
     pub position: [f32; 3],
+    /// The surface's normal there.
     pub normal: [f32; 3],
+    /// Where it lies on the paint.
     pub uv: [f32; 2],
 }
 
 impl Vertex {
+    /// The shaders' vertex inputs: position, normal, uv.
     pub const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
         wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
 
+    /// How a vertex buffer of these is laid out.
     pub fn layout() -> wgpu::VertexBufferLayout<'static> {
         wgpu::VertexBufferLayout {
             array_stride: std::mem::size_of::<Vertex>() as u64,
@@ -27,7 +33,9 @@ impl Vertex {
 /// A mesh on the CPU side.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MeshData {
+    /// The corners.
     pub vertices: Vec<Vertex>,
+    /// Three corners a triangle, by number.
     pub indices: Vec<u32>,
 }
 

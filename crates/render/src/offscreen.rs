@@ -14,7 +14,9 @@ pub const MAX_SIDE: u32 = 8192;
 
 /// An off-screen colour target and the buffer it is read back through.
 pub struct OffscreenTarget {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
     texture: wgpu::Texture,
     view: wgpu::TextureView,
@@ -23,6 +25,7 @@ pub struct OffscreenTarget {
 }
 
 impl OffscreenTarget {
+    /// A target of `width` x `height` pixels, each side 1 to [`MAX_SIDE`].
     pub fn new(gpu: &Gpu, width: u32, height: u32) -> Result<OffscreenTarget, RenderError> {
         if width == 0 || height == 0 || width > MAX_SIDE || height > MAX_SIDE {
             return Err(RenderError::Size {

@@ -12,8 +12,11 @@ use rolypoly_physics::WorldConfig;
 
 /// A GPU, a renderer and an off-screen target of one size.
 pub struct Snapshot {
+    /// The device it draws with.
     pub gpu: Gpu,
+    /// The renderer.
     pub renderer: Renderer,
+    /// The frame it draws into.
     pub target: OffscreenTarget,
 }
 

@@ -55,6 +55,7 @@ impl Default for LightConfig {
 /// The point light at the centre of the ceiling (S2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
+    /// Where the bulb is (m).
     pub position: Vec3,
     /// Linear RGB colour times intensity.
     pub color: Vec3,
@@ -66,14 +67,18 @@ pub struct Light {
     pub bloom: Option<Bloom>,
     /// Whether the fireball's light, when there is one, is drawn.
     pub fireball_light: bool,
+    /// Whether one bounce of light off the room's surfaces is drawn.
     pub indirect: bool,
+    /// Whether contact occlusion is drawn.
     pub occlusion: bool,
 }
 
 /// Glow around what is brighter than `threshold`, added at `strength`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bloom {
+    /// How much of the glow is added.
     pub strength: f32,
+    /// Linear brightness above which things glow.
     pub threshold: f32,
 }
 
@@ -81,6 +86,7 @@ pub struct Bloom {
 /// flashes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointLight {
+    /// Where it is (m).
     pub position: Vec3,
     /// Linear RGB colour times intensity.
     pub color: Vec3,
@@ -151,24 +157,32 @@ impl Light {
     }
 }
 
+/// A ball as it is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BallView {
+    /// Its centre (m).
     pub position: Vec3,
+    /// Its radius (m).
     pub radius: f32,
+    /// Its colour (linear RGB).
     pub color: Vec3,
 }
 
+/// A tumbler as it is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TumblerView {
     /// Centre of the bottom sphere (the mesh's origin).
     pub position: Vec3,
+    /// How it is turned.
     pub orientation: Quat,
     /// 1 normally; larger to show that it is held.
     pub scale: f32,
+    /// Its paint's base colour (linear RGB).
     pub color: Vec3,
 }
 
 impl TumblerView {
+    /// Mesh space to world space.
     pub fn model(&self) -> Mat4 {
         Mat4::from_scale_rotation_translation(
             Vec3::splat(self.scale),
@@ -181,12 +195,15 @@ impl TumblerView {
 /// A glowing cube of the particle effects.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ParticleView {
+    /// Its centre (m).
     pub position: Vec3,
     /// Edge length in metres.
     pub size: f32,
+    /// How it is turned.
     pub rotation: Quat,
     /// Linear HDR colour (brighter than 1 glows).
     pub color: Vec3,
+    /// Its opacity.
     pub alpha: f32,
 }
 
@@ -201,15 +218,22 @@ pub fn particle_color(kind: ParticleKind) -> Vec3 {
     }
 }
 
+/// Everything a frame draws: plain data read from the world and the effects.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneView {
+    /// The room's inner size (m).
     pub room_size: Vec3,
     /// Floor, ceiling, left, right, back, front.
     pub room_colors: [Vec3; 6],
+    /// The ceiling light.
     pub light: Light,
+    /// The balls in play.
     pub balls: Vec<BallView>,
+    /// The tumblers.
     pub tumblers: Vec<TumblerView>,
+    /// The particle effects' cubes.
     pub particles: Vec<ParticleView>,
+    /// The fireball's look, while it flies.
     pub fireball: Option<FireballLook>,
     /// The fireball's light (drawn where `light.fireball_light` says so).
     pub fireball_light: Option<PointLight>,

@@ -68,7 +68,9 @@ pub struct RenderSettings {
     pub msaa: u32,
     /// Size of one shadow face in texels.
     pub shadow_size: u32,
+    /// Whether the point light casts shadows.
     pub shadows: bool,
+    /// Scale of the light before tone mapping.
     pub exposure: f32,
     /// Depth-test a ball's fragments before tracing its sphere in them,
     /// where the adapter allows it. It changes no pixel; off only to measure
@@ -91,6 +93,7 @@ impl Default for RenderSettings {
 /// What a frame cost.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FrameStats {
+    /// Draw calls the frame recorded.
     pub draw_calls: u32,
     /// Time spent in our own code building and recording the frame.
     pub cpu_time: Duration,
@@ -124,6 +127,7 @@ fn flag(on: bool) -> f32 {
     if on { 1.0 } else { 0.0 }
 }
 
+/// Draws a [`SceneView`] into a colour target: shadows, the scene, particles, occlusion, bloom, tone mapping.
 pub struct Renderer {
     settings: RenderSettings,
     output_format: wgpu::TextureFormat,
@@ -226,10 +230,12 @@ impl Renderer {
         self.cursor.at = pixel;
     }
 
+    /// How it draws, as made.
     pub fn settings(&self) -> RenderSettings {
         self.settings
     }
 
+    /// The colour format it draws into.
     pub fn output_format(&self) -> wgpu::TextureFormat {
         self.output_format
     }
