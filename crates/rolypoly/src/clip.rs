@@ -23,7 +23,9 @@ const QUIET_FOR: Duration = Duration::from_secs(1);
 /// The kinds of clip, told by the name of the output.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum ClipKind {
+    /// An animated GIF.
     Gif,
+    /// An H.264 video, through ffmpeg.
     Mp4,
     /// Numbered PNGs in this folder.
     Pngs,

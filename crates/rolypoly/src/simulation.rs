@@ -8,7 +8,9 @@ use rolypoly_render::{LightConfig, SceneView};
 
 /// The world and its effects.
 pub struct Simulation {
+    /// The physics.
     pub world: World,
+    /// The particle effects.
     pub fx: Effects,
     /// The last tick's events, kept so that ticks allocate nothing.
     events: Vec<Event>,

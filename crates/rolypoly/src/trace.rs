@@ -19,7 +19,9 @@ use serde::ser::{SerializeMap, Serializer};
 #[derive(Debug, thiserror::Error)]
 #[error("cannot write trace to {name}")]
 pub struct TraceError {
+    /// The file, or standard output.
     pub name: String,
+    /// Why.
     #[source]
     pub source: io::Error,
 }

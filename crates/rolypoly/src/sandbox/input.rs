@@ -15,31 +15,58 @@ use crate::scene::{Scene, SceneError};
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Input {
     /// F: the fireball from `from` along `direction`.
-    Fireball { from: [f64; 3], direction: [f64; 3] },
+    Fireball {
+        /// Where it starts (m).
+        from: [f64; 3],
+        /// Which way it flies.
+        direction: [f64; 3],
+    },
     /// F again: the fireball gone.
     FireballOff,
     /// B: a ball thrown from `from` along `direction` at `speed` (m/s).
     Throw {
+        /// Where the ball starts (m).
         from: [f64; 3],
+        /// Which way it flies.
         direction: [f64; 3],
+        /// How fast (m/s).
         speed: f64,
     },
     /// The left button on tumbler `tumbler` at `point`.
-    Grab { tumbler: usize, point: [f64; 3] },
+    Grab {
+        /// The tumbler's number.
+        tumbler: usize,
+        /// The point held (m).
+        point: [f64; 3],
+    },
     /// The held tumbler pulled towards `to`.
-    Drag { to: [f64; 3] },
+    Drag {
+        /// The point the hand pulls towards (m).
+        to: [f64; 3],
+    },
     /// The left button let go.
     Release,
     /// I.
     Restart,
     /// The panel's settings, as the text of a scene file.
-    Settings { scene: String },
+    Settings {
+        /// The scene file's text.
+        scene: String,
+    },
     /// Another scene chosen, as the text of its file.
-    Load { name: String, scene: String },
+    Load {
+        /// Its name in the list.
+        name: String,
+        /// Its file's text.
+        scene: String,
+    },
     /// Where the camera is and looks: only the view follows it.
     Camera {
+        /// Where it stands (m).
         position: [f32; 3],
+        /// Radians about +y; 0 looks along -z.
         yaw: f32,
+        /// Radians above the horizon.
         pitch: f32,
     },
 }
@@ -48,25 +75,33 @@ pub enum Input {
 #[derive(Debug, thiserror::Error)]
 pub enum Refused {
     #[error(transparent)]
+    /// Too many balls thrown.
     Throw(#[from] ThrowRefused),
     #[error("cannot build the scene: {0}")]
+    /// The scene could not be built.
     Build(#[from] BuildError),
     #[error(transparent)]
+    /// The settings break the scene file's rules.
     Scene(#[from] SceneError),
 }
 
 /// Where the camera is and looks.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraPose {
+    /// Where it stands (m).
     pub position: Vec3,
+    /// Radians about +y; 0 looks along -z.
     pub yaw: f32,
+    /// Radians above the horizon.
     pub pitch: f32,
 }
 
 /// An input with the number of ticks done when it came.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Timed {
+    /// Ticks done when it came.
     pub tick: u64,
+    /// What it was.
     #[serde(flatten)]
     pub input: Input,
 }
@@ -75,8 +110,11 @@ pub struct Timed {
 /// loaded): the scene it began from and the inputs since.
 #[derive(Clone, Debug)]
 pub struct Journal {
+    /// The scene the line began from.
     pub scene: Scene,
+    /// Its name.
     pub name: String,
+    /// Every input since, in order.
     pub inputs: Vec<Timed>,
 }
 

@@ -33,6 +33,7 @@ pub const MAX_THROWN: usize = 500;
 /// Speed a ball is thrown at unless the player sets another (m/s), and the
 /// range they may set.
 pub const THROW_SPEED: f64 = 8.0;
+/// The throw speeds a player may set (m/s).
 pub const THROW_SPEEDS: (f64, f64) = (0.5, 40.0);
 
 /// Why a ball was not thrown.
@@ -42,6 +43,7 @@ pub struct ThrowRefused;
 
 /// The running toy.
 pub struct Sandbox {
+    /// The world and its effects.
     pub sim: Simulation,
     /// The settings as the player left them. The world runs on them, but
     /// for those that wait for a restart ([`Sandbox::restart_pending`]).
@@ -49,6 +51,7 @@ pub struct Sandbox {
     /// What the scene is called: its file or shipped name.
     scene_name: String,
     seed: u64,
+    /// Pause, steps and time scale.
     pub playback: Playback,
     /// Speed of a thrown ball (m/s).
     pub throw_speed: f64,
@@ -161,18 +164,22 @@ impl Sandbox {
         Ok(())
     }
 
+    /// The settings as the player left them.
     pub fn scene(&self) -> &Scene {
         &self.scene
     }
 
+    /// The scene's file or shipped name.
     pub fn scene_name(&self) -> &str {
         &self.scene_name
     }
 
+    /// The seed of the random start.
     pub fn seed(&self) -> u64 {
         self.seed
     }
 
+    /// The physics world.
     pub fn world(&self) -> &World {
         &self.sim.world
     }
@@ -306,6 +313,7 @@ impl Sandbox {
         }
     }
 
+    /// Whether R is recording.
     pub fn recording(&self) -> bool {
         self.recording_from.is_some()
     }

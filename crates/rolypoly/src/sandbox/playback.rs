@@ -41,10 +41,12 @@ impl Playback {
         self.latched || self.held
     }
 
+    /// Whether P (or the panel) paused it.
     pub fn paused(&self) -> bool {
         self.latched
     }
 
+    /// Pauses or goes on.
     pub fn set_paused(&mut self, paused: bool) {
         self.latched = paused;
     }
@@ -62,6 +64,7 @@ impl Playback {
         }
     }
 
+    /// Simulated seconds per real one.
     pub fn scale(&self) -> f64 {
         self.scale
     }
@@ -94,7 +97,7 @@ impl Playback {
 
     /// Runs `step` as many times as a frame of `elapsed` real seconds asks
     /// for, each a step of `dt`: the steps asked for while frozen, else
-    /// `elapsed` times the time scale in fixed steps (see [`FixedSteps`]).
+    /// `elapsed` times the time scale in fixed steps (see `fixed_steps`).
     /// Returns how many ran.
     pub fn advance(
         &mut self,

@@ -18,13 +18,15 @@ pub const REPLAY_FORMAT: u32 = 1;
 pub struct ReplayLog {
     /// [`REPLAY_FORMAT`].
     pub format: u32,
+    /// The seed of the world's random start.
     pub seed: u64,
-    /// The scene's name, and its settings as a scene file, where the
-    /// world's line began.
+    /// The name of the scene the world's line began from.
     pub name: String,
+    /// That scene's settings, as a scene file.
     pub scene: String,
-    /// Ticks from the line's start to where the recording starts and ends.
+    /// Ticks from the line's start to where the recording starts.
     pub from_tick: u64,
+    /// Ticks from the line's start to where it ends.
     pub to_tick: u64,
     /// [`super::Sandbox::digest`] at `to_tick`.
     pub end_digest: String,
@@ -87,12 +89,14 @@ impl ReplayLog {
         Ok(log)
     }
 
+    /// Reads the recording at `path`.
     pub fn read(path: &Path) -> anyhow::Result<ReplayLog> {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("cannot read recording `{}`", path.display()))?;
         ReplayLog::parse(&text, &path.display().to_string())
     }
 
+    /// Writes it to `path`.
     pub fn write(&self, path: &Path) -> anyhow::Result<()> {
         std::fs::write(path, self.to_text())
             .with_context(|| format!("cannot write recording `{}`", path.display()))

@@ -4,7 +4,9 @@
 /// A shipped scene: its file name and text.
 #[derive(Clone, Copy, Debug)]
 pub struct ShippedScene {
+    /// Its file name in `scenes/`.
     pub name: &'static str,
+    /// Its file's text.
     pub text: &'static str,
 }
 

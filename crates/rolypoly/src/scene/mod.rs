@@ -52,7 +52,9 @@ const SURFACE_NAMES: [&str; 6] = ["floor", "ceiling", "left", "right", "back", "
 /// command-line option.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Location {
+    /// The file, or the option.
     pub origin: String,
+    /// The line in the file, when known.
     pub line: Option<usize>,
 }
 
@@ -71,26 +73,40 @@ pub enum SceneError {
     /// The file could not be read (missing, a directory, no permission...).
     #[error("cannot read scene file `{path}`")]
     Read {
+        /// The file.
         path: String,
+        /// Why.
         #[source]
         source: std::io::Error,
     },
     /// Malformed TOML, an unknown key or a value of the wrong type.
     #[error("{at}: {message}")]
-    Syntax { at: Location, message: String },
+    Syntax {
+        /// Where.
+        at: Location,
+        /// What is wrong, in one line.
+        message: String,
+    },
     /// A value outside the range the simulation can handle.
     #[error("{at}: {key} = {value} is out of range: allowed {allowed}")]
     OutOfRange {
+        /// Where the value was given.
         at: Location,
+        /// Its key.
         key: String,
+        /// The value, as written.
         value: String,
+        /// The range allowed, in words.
         allowed: String,
     },
     /// A structural rule that is not a numeric range (list lengths and such).
     #[error("{at}: {key}: {problem}")]
     Invalid {
+        /// Where.
         at: Location,
+        /// The key.
         key: String,
+        /// What is wrong.
         problem: String,
     },
 }
@@ -98,8 +114,11 @@ pub enum SceneError {
 /// A loaded scene: the physics, the particle effects and the light.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Scene {
+    /// The physics.
     pub world: WorldConfig,
+    /// The particle effects (`[effects]`).
     pub effects: EffectsConfig,
+    /// The light (`[light]`).
     pub light: LightConfig,
 }
 

@@ -37,16 +37,23 @@ mod open;
 /// How the window is opened and driven.
 #[derive(Clone, Debug)]
 pub struct WindowOptions {
+    /// Width and height in pixels.
     pub size: (u32, u32),
+    /// Borderless over the whole screen.
     pub fullscreen: bool,
+    /// Wait for the display's refresh.
     pub vsync: bool,
+    /// Multisamples: 4 or 1.
     pub msaa: u32,
+    /// Print every change of state as a JSON line.
     pub log_events: bool,
+    /// The scene's seed, for the HUD.
     pub seed: u64,
     /// Where F12 writes screenshots.
     pub screenshot_dir: PathBuf,
-    /// Walking speed (m/s) and mouse-look sensitivity (radians per pixel).
+    /// Walking speed (m/s).
     pub move_speed: f32,
+    /// Mouse-look sensitivity (radians per pixel).
     pub look_speed: f32,
     /// The scene file given, offered in the panel's list beside the
     /// shipped scenes.
