@@ -435,11 +435,14 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
 }
 
 /// The length of a clip: more than nothing, at most an hour.
+/// The longest clip, in simulated seconds: an hour.
+pub const MAX_CLIP_SECONDS: f64 = 3600.0;
+
 fn parse_clip_seconds(text: &str) -> Result<f64, String> {
     let seconds: f64 = text
         .parse()
         .map_err(|_| format!("`{text}` is not a number of seconds"))?;
-    if seconds.is_finite() && seconds > 0.0 && seconds <= 3600.0 {
+    if seconds.is_finite() && seconds > 0.0 && seconds <= MAX_CLIP_SECONDS {
         Ok(seconds)
     } else {
         Err(format!(

@@ -745,6 +745,27 @@ fn replay_refuses_a_broken_or_tampered_recording_cleanly() {
         "{err}"
     );
 
+    let to_tick = format!("\"to_tick\":{}", log.to_tick);
+    for (ticks, says) in [
+        // 2.3 hours at 120 steps a second.
+        ("1000000", "a clip is at most 3600 s"),
+        (
+            "99999999999",
+            "hours of simulated time; a recording is at most 10",
+        ),
+    ] {
+        let long = scratch(&format!("long-{ticks}.replay"));
+        let text = text.replacen(&to_tick, &format!("\"to_tick\":{ticks}"), 1);
+        std::fs::write(&long, text).expect("written");
+        let err = assert_clean_failure(&rolypoly(&[
+            "replay",
+            long.to_str().expect("UTF-8 path"),
+            "--out",
+            out.to_str().expect("UTF-8 path"),
+        ]));
+        assert!(err.contains(says), "{err}");
+    }
+
     let not_json = scene_file("not-a-recording.replay", "gravity = 3\n");
     let err = assert_clean_failure(&rolypoly(&[
         "replay",

@@ -5,11 +5,15 @@
 use anyhow::Context;
 use rolypoly_render::Camera;
 
-use crate::cli::{ReplayArgs, WindowArgs, steps_for};
+use crate::cli::{MAX_CLIP_SECONDS, ReplayArgs, WindowArgs, steps_for};
 use crate::clip::{frame_count, write_clip};
 use crate::frames::Frames;
 use crate::sandbox::{ReplayLog, Sandbox};
 use crate::window::fly_camera::FlyCamera;
+
+/// Longest recording played, in hours of simulated time: beyond it, the
+/// file is more likely damaged than real, and would keep the player waiting.
+const MAX_REPLAY_HOURS: f64 = 10.0;
 
 /// Plays the recording `args.log`: off-screen into `args.out` if given,
 /// else in a window opened as `window` says.
@@ -22,6 +26,14 @@ pub fn replay(args: &ReplayArgs, window: &WindowArgs) -> anyhow::Result<()> {
     let log = ReplayLog::read(&args.log)?;
     let mut sandbox = Sandbox::for_replay(&log)
         .with_context(|| format!("cannot replay `{}`", args.log.display()))?;
+    let dt = sandbox.world().config().solver.dt;
+    let hours = log.to_tick as f64 * dt / 3600.0;
+    if hours > MAX_REPLAY_HOURS {
+        anyhow::bail!(
+            "`{}` runs {hours:.0} hours of simulated time; a recording is at most {MAX_REPLAY_HOURS} (is it damaged?)",
+            args.log.display()
+        );
+    }
     // The world as it was when R was pressed.
     sandbox.replay_until(log.from_tick);
     match &args.out {
@@ -44,6 +56,11 @@ fn clip(
     let mut frames = Frames::new(&config, &args.frame, args.size)?;
     let dt = config.solver.dt;
     let seconds = (log.to_tick - log.from_tick) as f64 * dt;
+    if seconds > MAX_CLIP_SECONDS {
+        anyhow::bail!(
+            "the recording spans {seconds:.0} s; a clip is at most {MAX_CLIP_SECONDS} s (play it in the window instead)"
+        );
+    }
     let count = frame_count(seconds, args.fps);
     let overview = Camera::overview(config.room.size.as_vec3());
     write_clip(out, args.size, args.fps, count, |k| {

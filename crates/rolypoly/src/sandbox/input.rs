@@ -6,7 +6,7 @@ use glam::{DVec3, Vec3};
 use rolypoly_physics::BuildError;
 use serde::{Deserialize, Serialize};
 
-use super::ThrowRefused;
+use super::{THROW_SPEEDS, ThrowRefused};
 use crate::scene::{Scene, SceneError};
 
 /// One thing a player did that the simulation (or, for the camera, the
@@ -74,14 +74,18 @@ pub enum Input {
 /// Why an input changed nothing.
 #[derive(Debug, thiserror::Error)]
 pub enum Refused {
-    #[error(transparent)]
     /// Too many balls thrown.
-    Throw(#[from] ThrowRefused),
-    #[error("cannot build the scene: {0}")]
-    /// The scene could not be built.
-    Build(#[from] BuildError),
     #[error(transparent)]
+    Throw(#[from] ThrowRefused),
+    /// A throw faster or slower than a player may throw (a recording
+    /// edited by hand).
+    #[error("a ball thrown at {0} m/s: allowed {lo} ..= {hi}", lo = THROW_SPEEDS.0, hi = THROW_SPEEDS.1)]
+    Speed(f64),
+    /// The scene could not be built.
+    #[error("cannot build the scene: {0}")]
+    Build(#[from] BuildError),
     /// The settings break the scene file's rules.
+    #[error(transparent)]
     Scene(#[from] SceneError),
 }
 

@@ -114,6 +114,10 @@ impl Sandbox {
                 if self.thrown >= MAX_THROWN {
                     return Err(ThrowRefused.into());
                 }
+                let (slowest, fastest) = THROW_SPEEDS;
+                if !(slowest..=fastest).contains(speed) {
+                    return Err(Refused::Speed(*speed));
+                }
                 self.thrown += 1;
                 let velocity = vector(*direction).normalize_or(DVec3::NEG_Z) * *speed;
                 self.sim.world.throw_ball(vector(*from), velocity);

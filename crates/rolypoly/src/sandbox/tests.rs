@@ -133,6 +133,22 @@ fn throws_stop_at_the_cap_with_a_message_until_the_restart() {
 }
 
 #[test]
+fn a_throw_at_a_speed_no_player_can_set_is_refused() {
+    let mut s = sandbox(6);
+    let balls = s.world().balls().len();
+    for speed in [1e300, -1.0, 0.0, THROW_SPEEDS.1 * 1.01] {
+        let throw = Input::Throw {
+            from: [0.0, 2.0, 1.0],
+            direction: [0.0, 0.0, -1.0],
+            speed,
+        };
+        let refused = s.apply(throw).unwrap_err().to_string();
+        assert!(refused.starts_with("a ball thrown at"), "{refused}");
+    }
+    assert_eq!((s.world().balls().len(), s.thrown()), (balls, 0));
+}
+
+#[test]
 fn a_thrown_ball_leaves_along_the_view_at_the_throw_speed() {
     let mut s = sandbox(6);
     s.throw_speed = 12.0;
