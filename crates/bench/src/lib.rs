@@ -4,6 +4,7 @@
 
 #![warn(missing_docs)]
 
+pub mod figures;
 pub mod ours;
 pub mod pit;
 pub mod quality;

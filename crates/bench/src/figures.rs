@@ -1,0 +1,301 @@
+//! The figures in docs/: the physics measured against theory, drawn as SVG.
+//! Each is made from simulations run here, so the same code gives the same
+//! bytes; `cargo run -p rolypoly-bench --bin figures` writes them, and a
+//! test fails when the files in docs/figures/ are not what it would write.
+
+use std::f64::consts::{FRAC_PI_2, TAU};
+
+use glam::DVec3;
+use plotters::prelude::*;
+use rolypoly_physics::{SphereSpec, TumblerPlacement, World, WorldConfig};
+
+/// A figure: its file name in docs/figures/ and its SVG text.
+pub struct Figure {
+    /// The file name.
+    pub name: &'static str,
+    /// The SVG.
+    pub svg: String,
+}
+
+/// Every figure, in the order the docs show them.
+pub fn all() -> Result<Vec<Figure>, String> {
+    Ok(vec![
+        Figure {
+            name: "tumbler-period.svg",
+            svg: tumbler_period()?,
+        },
+        Figure {
+            name: "bounce-height.svg",
+            svg: bounce_height()?,
+        },
+        Figure {
+            name: "energy.svg",
+            svg: energy()?,
+        },
+    ])
+}
+
+const SIZE: (u32, u32) = (640, 400);
+
+fn empty_room() -> WorldConfig {
+    let mut config = WorldConfig::default();
+    config.balls.count = 0;
+    config.tumblers.placements.clear();
+    config
+}
+
+/// The rolling pendulum's period at amplitude `theta0` (radians), for a
+/// body of the spheres' mass properties on a round bottom of radius `R`:
+/// with `a` the centre of mass below the bottom's centre and `k` the radius
+/// of gyration, energy gives `J(θ) θ'² = 2 g a (cos θ - cos θ0)`, where
+/// `J = k² + R² + a² - 2 R a cos θ`. With `sin(θ/2) = sin(θ0/2) sin φ` the
+/// quarter period is `∫ sqrt(J / (g a)) / sqrt(1 - sin²(θ0/2) sin² φ) dφ`
+/// over `φ` from 0 to π/2, taken here by the midpoint rule.
+pub fn rolling_pendulum_period(spheres: &[SphereSpec], g: f64, theta0: f64) -> f64 {
+    let m: f64 = spheres.iter().map(|s| s.mass).sum();
+    let com = spheres.iter().map(|s| s.mass * s.height).sum::<f64>() / m;
+    let big_r = spheres[0].radius;
+    let a = -com;
+    let k2 = spheres
+        .iter()
+        .map(|s| 0.4 * s.mass * s.radius * s.radius + s.mass * (s.height - com).powi(2))
+        .sum::<f64>()
+        / m;
+    let s = (theta0 / 2.0).sin();
+    let n = 2000;
+    let h = FRAC_PI_2 / n as f64;
+    let quarter: f64 = (0..n)
+        .map(|i| {
+            let phi = (i as f64 + 0.5) * h;
+            let theta = 2.0 * (s * phi.sin()).asin();
+            let j = k2 + big_r * big_r + a * a - 2.0 * big_r * a * theta.cos();
+            (j / (g * a)).sqrt() / (1.0 - (s * phi.sin()).powi(2)).sqrt() * h
+        })
+        .sum();
+    4.0 * quarter
+}
+
+/// A lone undamped tumbler released at `amplitude` degrees: the mean of
+/// its first two periods, from the times its axis passes upright.
+pub fn simulated_period(amplitude: f64) -> f64 {
+    let mut config = empty_room();
+    config.tumblers.damping = 0.0;
+    config.tumblers.placements = vec![TumblerPlacement {
+        x: 0.0,
+        z: 0.0,
+        tilt_axis: DVec3::X,
+        tilt_deg: amplitude,
+    }];
+    let mut world = World::new(config, 1).expect("a lone tumbler fits the room");
+    let dt = world.config().solver.dt;
+    let mut crossings = Vec::new();
+    let mut prev = world.tumblers()[0].axis().z;
+    while crossings.len() < 5 && world.time() < 30.0 {
+        world.step();
+        let z = world.tumblers()[0].axis().z;
+        if (prev < 0.0) != (z < 0.0) {
+            crossings.push(world.time() - dt + dt * prev / (prev - z));
+        }
+        prev = z;
+    }
+    (crossings[4] - crossings[0]) / 2.0
+}
+
+fn tumbler_period() -> Result<String, String> {
+    let config = WorldConfig::default();
+    let spheres = &config.tumblers.spheres;
+    let amplitudes: Vec<f64> = (1..=16).map(|k| 5.0 * k as f64).collect();
+    let simulated: Vec<(f64, f64)> = amplitudes
+        .iter()
+        .map(|&a| (a, simulated_period(a)))
+        .collect();
+    let theory: Vec<(f64, f64)> = (0..=170)
+        .map(|k| {
+            let a = 0.5 * k as f64;
+            (
+                a,
+                rolling_pendulum_period(spheres, config.gravity, a.to_radians()),
+            )
+        })
+        .collect();
+    let top = simulated
+        .iter()
+        .chain(&theory)
+        .map(|p| p.1)
+        .fold(0.0, f64::max)
+        * 1.1;
+    let small = TAU / (TAU / theory[0].1);
+    plot(
+        "The tumbler's rocking period against its amplitude",
+        ("amplitude (degrees)", 0.0..85.0),
+        ("period (s)", 0.0..top),
+        &[
+            Series::Line("rolling pendulum, exact", theory, BLUE),
+            Series::Points("simulated", simulated, RED),
+            Series::Line(
+                "small-amplitude limit",
+                vec![(0.0, small), (85.0, small)],
+                RGBColor(150, 150, 150),
+            ),
+        ],
+    )
+}
+
+/// The height of a ball's first rebound over the height it fell from, on
+/// a floor and ball of restitution `e`.
+pub fn rebound_ratio(e: f64) -> f64 {
+    let mut config = empty_room();
+    config.room.restitution = e;
+    config.balls.restitution = e;
+    config.solver.bounce_threshold = 0.0;
+    let mut world = World::new(config, 1).expect("an empty room builds");
+    world.throw_ball(DVec3::new(0.0, 1.6, 0.0), DVec3::ZERO);
+    let r = world.config().balls.radius;
+    let drop = world.balls().positions()[0].y - r;
+    let (mut fell, mut top) = (false, 0.0_f64);
+    while world.time() < 5.0 {
+        world.step();
+        let v = world.balls().velocities()[0].y;
+        if v > 0.0 {
+            fell = true;
+            top = top.max(world.balls().positions()[0].y - r);
+        } else if fell {
+            break;
+        }
+    }
+    top / drop
+}
+
+fn bounce_height() -> Result<String, String> {
+    let measured: Vec<(f64, f64)> = (1..=10)
+        .map(|k| {
+            let e = 0.1 * k as f64;
+            (e, rebound_ratio(e))
+        })
+        .collect();
+    let theory: Vec<(f64, f64)> = (0..=100)
+        .map(|k| (0.01 * k as f64, (0.01 * k as f64).powi(2)))
+        .collect();
+    plot(
+        "Rebound height over drop height against restitution",
+        ("restitution e", 0.0..1.05),
+        ("rebound / drop", 0.0..1.1),
+        &[
+            Series::Line("e squared", theory, BLUE),
+            Series::Points("simulated", measured, RED),
+        ],
+    )
+}
+
+/// Total energy over time relative to the start, one sample every 0.1 s.
+pub fn energy_over_time(config: WorldConfig, seconds: f64) -> Vec<(f64, f64)> {
+    let mut world = World::new(config, 1).expect("the scene builds");
+    let every = (0.1 / world.config().solver.dt).round() as u64;
+    let start = world.energy().total();
+    let mut samples = vec![(0.0, 1.0)];
+    while world.time() < seconds {
+        world.step();
+        if world.step_count() % every == 0 {
+            samples.push((world.time(), world.energy().total() / start));
+        }
+    }
+    samples
+}
+
+fn energy() -> Result<String, String> {
+    // As scenes/elastic-gas.toml: 400 perfectly elastic, frictionless
+    // balls without gravity, every impact bouncing.
+    let mut gas = WorldConfig {
+        gravity: 0.0,
+        ..WorldConfig::default()
+    };
+    gas.room.restitution = 1.0;
+    gas.room.friction = 0.0;
+    gas.room.rolling_resistance = 0.0;
+    gas.balls.count = 400;
+    gas.balls.restitution = 1.0;
+    gas.tumblers.placements.clear();
+    gas.solver.bounce_threshold = 0.0;
+    plot(
+        "Total energy over time, as a share of the start",
+        ("time (s)", 0.0..10.0),
+        ("energy / energy at 0", 0.0..1.1),
+        &[
+            Series::Line(
+                "elastic gas (400 balls, e = 1)",
+                energy_over_time(gas, 10.0),
+                BLUE,
+            ),
+            Series::Line(
+                "default scene (settles; what stays is height)",
+                energy_over_time(WorldConfig::default(), 10.0),
+                RED,
+            ),
+        ],
+    )
+}
+
+enum Series {
+    Line(&'static str, Vec<(f64, f64)>, RGBColor),
+    Points(&'static str, Vec<(f64, f64)>, RGBColor),
+}
+
+fn plot(
+    title: &str,
+    (x_name, x_range): (&str, std::ops::Range<f64>),
+    (y_name, y_range): (&str, std::ops::Range<f64>),
+    series: &[Series],
+) -> Result<String, String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 18))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(56)
+            .build_cartesian_2d(x_range, y_range)
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc(x_name)
+            .y_desc(y_name)
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for s in series {
+            match s {
+                Series::Line(label, points, color) => {
+                    let color = *color;
+                    chart
+                        .draw_series(LineSeries::new(
+                            points.iter().copied(),
+                            color.stroke_width(2),
+                        ))
+                        .map_err(|e| e.to_string())?
+                        .label(*label)
+                        .legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                        });
+                }
+                Series::Points(label, points, color) => {
+                    let color = *color;
+                    chart
+                        .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                        .map_err(|e| e.to_string())?
+                        .label(*label)
+                        .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
+                }
+            }
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}
