@@ -161,7 +161,22 @@ fn default_scene_with_fireball() -> Result<f64, String> {
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    // `--csv FILE`: the steps per second of each engine at each size, for
+    // the figure in docs/figures/.
+    let csv = match args.iter().position(|a| a == "--csv") {
+        None => None,
+        Some(at) if at + 1 < args.len() => {
+            let path = args.remove(at + 1);
+            args.remove(at);
+            Some(path)
+        }
+        Some(_) => {
+            eprintln!("versus_rapier: --csv needs a file name");
+            std::process::exit(2);
+        }
+    };
+    let mut rows = String::from("balls,engine,steps_per_second\n");
     let seconds = match args
         .iter()
         .find(|a| a.ends_with('s') && !a.starts_with('-'))
@@ -230,6 +245,8 @@ fn main() {
         let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
         print_row(n, "rolypoly", &our_run, ratio);
         print_row(n, &name, &rapier_run, 1.0);
+        rows += &format!("{n},rolypoly,{:.2}\n", our_run.steps_per_second);
+        rows += &format!("{n},{name},{:.2}\n", rapier_run.steps_per_second);
         if let Some([lowest, median, highest]) = ratio_by_turn(&our_run, &rapier_run) {
             println!(
                 "{:>7} ratio turn by turn ({} turns): lowest {lowest:.2}, median {median:.2}, \
@@ -244,6 +261,15 @@ fn main() {
         );
         if let Some(target) = target_for(n, &our_run, &rapier_run, ratio) {
             println!("{:>7} {target}", "");
+        }
+    }
+    if let Some(path) = csv {
+        match std::fs::write(&path, &rows) {
+            Ok(()) => println!("wrote {path}"),
+            Err(e) => {
+                eprintln!("versus_rapier: cannot write `{path}`: {e}");
+                std::process::exit(1);
+            }
         }
     }
     match default_scene_with_fireball() {

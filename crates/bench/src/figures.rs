@@ -32,10 +32,19 @@ pub fn all() -> Result<Vec<Figure>, String> {
             name: "energy.svg",
             svg: energy()?,
         },
+        Figure {
+            name: "steps-per-second.svg",
+            svg: steps_per_second(STEPS_PER_SECOND)?,
+        },
     ])
 }
 
 const SIZE: (u32, u32) = (640, 400);
+
+/// Steps per second of each engine at each size, as one run of
+/// `cargo bench -p rolypoly-bench -- --csv FILE` wrote them: a bench run
+/// takes minutes, so the figure is drawn from its record, not run anew.
+const STEPS_PER_SECOND: &str = include_str!("../../../docs/figures/steps-per-second.csv");
 
 fn empty_room() -> WorldConfig {
     let mut config = WorldConfig::default();
@@ -233,6 +242,90 @@ fn energy() -> Result<String, String> {
             ),
         ],
     )
+}
+
+/// Steps per second against ball count, both engines, from `csv`
+/// (`balls,engine,steps_per_second` lines under a header).
+fn steps_per_second(csv: &str) -> Result<String, String> {
+    let mut engines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    for (n, line) in csv.lines().enumerate().skip(1) {
+        let fields: Vec<&str> = line.split(',').collect();
+        let [balls, engine, rate] = fields[..] else {
+            return Err(format!(
+                "steps-per-second.csv:{}: not balls,engine,steps_per_second",
+                n + 1
+            ));
+        };
+        let number = |text: &str| {
+            text.parse::<f64>()
+                .map_err(|_| format!("steps-per-second.csv:{}: `{text}` is not a number", n + 1))
+        };
+        let point = (number(balls)?, number(rate)?);
+        match engines.iter_mut().find(|(name, _)| name == engine) {
+            Some((_, points)) => points.push(point),
+            None => engines.push((engine.to_owned(), vec![point])),
+        }
+    }
+    let all = || engines.iter().flat_map(|(_, p)| p.iter().copied());
+    let (x_lo, x_hi) = all().fold((f64::MAX, 0.0_f64), |(lo, hi), p| {
+        (lo.min(p.0), hi.max(p.0))
+    });
+    let (y_lo, y_hi) = all().fold((f64::MAX, 0.0_f64), |(lo, hi), p| {
+        (lo.min(p.1), hi.max(p.1))
+    });
+    if engines.is_empty() {
+        return Err("steps-per-second.csv holds no runs".into());
+    }
+    let colors = [RED, BLUE];
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                "Steps per second against ball count (the ball pit, 2 threads)",
+                ("sans-serif", 18),
+            )
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(56)
+            .build_cartesian_2d(
+                (x_lo * 0.8..x_hi * 1.25).log_scale(),
+                (y_lo * 0.5..y_hi * 2.0).log_scale(),
+            )
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc("balls")
+            .y_desc("steps per second")
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for ((name, points), color) in engines.iter().zip(colors.iter().cycle()) {
+            let color = *color;
+            chart
+                .draw_series(LineSeries::new(
+                    points.iter().copied(),
+                    color.stroke_width(2),
+                ))
+                .map_err(|e| e.to_string())?
+                .label(name.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            chart
+                .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                .map_err(|e| e.to_string())?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
 }
 
 enum Series {
