@@ -6,6 +6,7 @@
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 use glam::DVec3;
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 use rolypoly_physics::{SphereSpec, TumblerPlacement, World, WorldConfig};
 
@@ -147,6 +148,7 @@ fn tumbler_period() -> Result<String, String> {
                 RGBColor(150, 150, 150),
             ),
         ],
+        SeriesLabelPosition::LowerRight,
     )
 }
 
@@ -193,6 +195,7 @@ fn bounce_height() -> Result<String, String> {
             Series::Line("e squared", theory, BLUE),
             Series::Points("simulated", measured, RED),
         ],
+        SeriesLabelPosition::LowerRight,
     )
 }
 
@@ -241,6 +244,7 @@ fn energy() -> Result<String, String> {
                 RED,
             ),
         ],
+        SeriesLabelPosition::LowerRight,
     )
 }
 
@@ -277,68 +281,41 @@ fn steps_per_second(csv: &str) -> Result<String, String> {
         return Err("steps-per-second.csv holds no runs".into());
     }
     let colors = [RED, BLUE];
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                "Steps per second against ball count (the ball pit, 2 threads)",
-                ("sans-serif", 18),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(56)
-            .build_cartesian_2d(
-                (x_lo * 0.8..x_hi * 1.25).log_scale(),
-                (y_lo * 0.5..y_hi * 2.0).log_scale(),
-            )
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc("balls")
-            .y_desc("steps per second")
-            .draw()
-            .map_err(|e| e.to_string())?;
-        for ((name, points), color) in engines.iter().zip(colors.iter().cycle()) {
-            let color = *color;
-            chart
-                .draw_series(LineSeries::new(
-                    points.iter().copied(),
-                    color.stroke_width(2),
-                ))
-                .map_err(|e| e.to_string())?
-                .label(name.as_str())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
-            chart
-                .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                .map_err(|e| e.to_string())?;
-        }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| e.to_string())?;
-        root.present().map_err(|e| e.to_string())?;
-    }
-    Ok(svg)
+    let series: Vec<Series> = engines
+        .into_iter()
+        .zip(colors.iter().cycle())
+        .map(|((name, points), color)| Series::Measured(name, points, *color))
+        .collect();
+    plot(
+        "Steps per second against ball count (the ball pit, 2 threads)",
+        ("balls", (x_lo * 0.8..x_hi * 1.25).log_scale()),
+        ("steps per second", (y_lo * 0.5..y_hi * 2.0).log_scale()),
+        &series,
+        SeriesLabelPosition::UpperRight,
+    )
 }
 
+/// What a figure draws: a line, points, or measured points joined by a
+/// line, each with its label and colour.
 enum Series {
     Line(&'static str, Vec<(f64, f64)>, RGBColor),
     Points(&'static str, Vec<(f64, f64)>, RGBColor),
+    Measured(String, Vec<(f64, f64)>, RGBColor),
 }
 
-fn plot(
+fn plot<X, Y>(
     title: &str,
-    (x_name, x_range): (&str, std::ops::Range<f64>),
-    (y_name, y_range): (&str, std::ops::Range<f64>),
+    (x_name, x_range): (&str, X),
+    (y_name, y_range): (&str, Y),
     series: &[Series],
-) -> Result<String, String> {
+    legend_at: SeriesLabelPosition,
+) -> Result<String, String>
+where
+    X: AsRangedCoord<Value = f64>,
+    Y: AsRangedCoord<Value = f64>,
+    X::CoordDescType: ValueFormatter<f64>,
+    Y::CoordDescType: ValueFormatter<f64>,
+{
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
@@ -379,11 +356,27 @@ fn plot(
                         .label(*label)
                         .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
                 }
+                Series::Measured(label, points, color) => {
+                    let color = *color;
+                    chart
+                        .draw_series(LineSeries::new(
+                            points.iter().copied(),
+                            color.stroke_width(2),
+                        ))
+                        .map_err(|e| e.to_string())?
+                        .label(label.as_str())
+                        .legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                        });
+                    chart
+                        .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                        .map_err(|e| e.to_string())?;
+                }
             }
         }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
+            .position(legend_at)
             .background_style(WHITE.mix(0.9))
             .border_style(BLACK)
             .draw()

@@ -108,9 +108,7 @@ impl App {
         let Some(log) = self.sandbox.stop_recording() else {
             return;
         };
-        let stamp = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map_or(0, |d| d.as_secs());
+        let stamp = super::seconds_since_1970();
         let path = self
             .options
             .screenshot_dir

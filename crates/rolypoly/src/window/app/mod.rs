@@ -291,9 +291,7 @@ impl App {
         target.render(&r.gpu, &mut renderer, &view, &self.camera.camera())?;
         let image = target.read(&r.gpu)?;
         self.screenshots += 1;
-        let stamp = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map_or(0, |d| d.as_secs());
+        let stamp = seconds_since_1970();
         let path = self
             .options
             .screenshot_dir
@@ -371,6 +369,14 @@ impl ApplicationHandler for App {
             r.window.request_redraw();
         }
     }
+}
+
+/// The time now in whole seconds since 1970, which names the files F12
+/// and R write so that each run's files sort in order and do not collide.
+fn seconds_since_1970() -> u64 {
+    std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs())
 }
 
 /// The mesh a tumbler of `spheres` is drawn with, and its paint.
