@@ -140,9 +140,9 @@ fn tumbler_period() -> Result<String, String> {
         ("amplitude (degrees)", 0.0..85.0),
         ("period (s)", 0.0..top),
         &[
-            Series::Line("rolling pendulum, exact", theory, BLUE),
-            Series::Points("simulated", simulated, RED),
-            Series::Line(
+            Series::line("rolling pendulum, exact", theory, BLUE),
+            Series::dots("simulated", simulated, RED),
+            Series::line(
                 "small-amplitude limit",
                 vec![(0.0, small), (85.0, small)],
                 RGBColor(150, 150, 150),
@@ -192,8 +192,8 @@ fn bounce_height() -> Result<String, String> {
         ("restitution e", 0.0..1.05),
         ("rebound / drop", 0.0..1.1),
         &[
-            Series::Line("e squared", theory, BLUE),
-            Series::Points("simulated", measured, RED),
+            Series::line("e squared", theory, BLUE),
+            Series::dots("simulated", measured, RED),
         ],
         SeriesLabelPosition::LowerRight,
     )
@@ -233,12 +233,12 @@ fn energy() -> Result<String, String> {
         ("time (s)", 0.0..10.0),
         ("energy / energy at 0", 0.0..1.1),
         &[
-            Series::Line(
+            Series::line(
                 "elastic gas (400 balls, e = 1)",
                 energy_over_time(gas, 10.0),
                 BLUE,
             ),
-            Series::Line(
+            Series::line(
                 "default scene (settles; what stays is height)",
                 energy_over_time(WorldConfig::default(), 10.0),
                 RED,
@@ -284,7 +284,7 @@ fn steps_per_second(csv: &str) -> Result<String, String> {
     let series: Vec<Series> = engines
         .into_iter()
         .zip(colors.iter().cycle())
-        .map(|((name, points), color)| Series::Measured(name, points, *color))
+        .map(|((name, points), color)| Series::measured(&name, points, *color))
         .collect();
     plot(
         "Steps per second against ball count (the ball pit, 2 threads)",
@@ -295,12 +295,45 @@ fn steps_per_second(csv: &str) -> Result<String, String> {
     )
 }
 
-/// What a figure draws: a line, points, or measured points joined by a
-/// line, each with its label and colour.
-enum Series {
-    Line(&'static str, Vec<(f64, f64)>, RGBColor),
-    Points(&'static str, Vec<(f64, f64)>, RGBColor),
-    Measured(String, Vec<(f64, f64)>, RGBColor),
+/// What a figure draws of one set of points: a line through them, a dot
+/// at each, or both; with its label and colour.
+struct Series {
+    label: String,
+    points: Vec<(f64, f64)>,
+    color: RGBColor,
+    line: bool,
+    dots: bool,
+}
+
+impl Series {
+    fn new(
+        label: &str,
+        points: Vec<(f64, f64)>,
+        color: RGBColor,
+        line: bool,
+        dots: bool,
+    ) -> Series {
+        let label = label.to_owned();
+        Series {
+            label,
+            points,
+            color,
+            line,
+            dots,
+        }
+    }
+    /// A curve, such as theory.
+    fn line(label: &str, points: Vec<(f64, f64)>, color: RGBColor) -> Series {
+        Series::new(label, points, color, true, false)
+    }
+    /// Dots, such as simulated points over theory.
+    fn dots(label: &str, points: Vec<(f64, f64)>, color: RGBColor) -> Series {
+        Series::new(label, points, color, false, true)
+    }
+    /// Dots joined by a line, such as measurements at a few sizes.
+    fn measured(label: &str, points: Vec<(f64, f64)>, color: RGBColor) -> Series {
+        Series::new(label, points, color, true, true)
+    }
 }
 
 fn plot<X, Y>(
@@ -334,43 +367,28 @@ where
             .draw()
             .map_err(|e| e.to_string())?;
         for s in series {
-            match s {
-                Series::Line(label, points, color) => {
-                    let color = *color;
-                    chart
-                        .draw_series(LineSeries::new(
-                            points.iter().copied(),
-                            color.stroke_width(2),
-                        ))
-                        .map_err(|e| e.to_string())?
-                        .label(*label)
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                        });
-                }
-                Series::Points(label, points, color) => {
-                    let color = *color;
-                    chart
-                        .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                        .map_err(|e| e.to_string())?
-                        .label(*label)
+            let color = s.color;
+            if s.line {
+                chart
+                    .draw_series(LineSeries::new(
+                        s.points.iter().copied(),
+                        color.stroke_width(2),
+                    ))
+                    .map_err(|e| e.to_string())?
+                    .label(s.label.as_str())
+                    .legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                    });
+            }
+            if s.dots {
+                let drawn = chart
+                    .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                    .map_err(|e| e.to_string())?;
+                // A line drawn with them already stands for them in the legend.
+                if !s.line {
+                    drawn
+                        .label(s.label.as_str())
                         .legend(move |(x, y)| Circle::new((x + 10, y), 4, color.filled()));
-                }
-                Series::Measured(label, points, color) => {
-                    let color = *color;
-                    chart
-                        .draw_series(LineSeries::new(
-                            points.iter().copied(),
-                            color.stroke_width(2),
-                        ))
-                        .map_err(|e| e.to_string())?
-                        .label(label.as_str())
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                        });
-                    chart
-                        .draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                        .map_err(|e| e.to_string())?;
                 }
             }
         }

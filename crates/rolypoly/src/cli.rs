@@ -249,14 +249,8 @@ pub struct RecordArgs {
     #[arg(long, value_name = "S", default_value_t = 3.0, value_parser = parse_clip_seconds)]
     pub seconds: f64,
 
-    /// Frames per simulated second (1 ..= 60). A GIF keeps its delays in
-    /// hundredths of a second, so it plays 30 as 33.
-    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=60))]
-    pub fps: u32,
-
-    /// Frame size in pixels, WIDTHxHEIGHT (each 1 ..= 8192).
-    #[arg(long, value_name = "WxH", default_value = "640x360", value_parser = parse_size)]
-    pub size: (u32, u32),
+    #[command(flatten)]
+    pub clip: ClipArgs,
 
     #[command(flatten)]
     pub frame: FrameArgs,
@@ -274,13 +268,8 @@ pub struct ReplayArgs {
     #[arg(value_name = "LOG")]
     pub log: PathBuf,
 
-    /// Frames per simulated second of the clip (1 ..= 60).
-    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=60))]
-    pub fps: u32,
-
-    /// Frame size of the clip in pixels, WIDTHxHEIGHT (each 1 ..= 8192).
-    #[arg(long, value_name = "WxH", default_value = "640x360", value_parser = parse_size)]
-    pub size: (u32, u32),
+    #[command(flatten)]
+    pub clip: ClipArgs,
 
     #[command(flatten)]
     pub frame: FrameArgs,
@@ -290,6 +279,19 @@ pub struct ReplayArgs {
     /// the one recorded, unless --camera says otherwise.
     #[arg(long, value_name = "FILE.gif|FILE.mp4|DIR/")]
     pub out: Option<PathBuf>,
+}
+
+/// The rate and size of the frames of a clip (`record`, `replay --out`).
+#[derive(Debug, Args)]
+pub struct ClipArgs {
+    /// Frames per simulated second (1 ..= 60). A GIF keeps its delays in
+    /// hundredths of a second, so it plays 30 as 33.
+    #[arg(long, value_name = "N", default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=60))]
+    pub fps: u32,
+
+    /// Frame size in pixels, WIDTHxHEIGHT (each 1 ..= 8192).
+    #[arg(long, value_name = "WxH", default_value = "640x360", value_parser = parse_size)]
+    pub size: (u32, u32),
 }
 
 /// How the frames of `render`, `record` and `replay` are drawn.

@@ -7,29 +7,29 @@ use crate::clip::{frame_count, write_clip};
 use crate::frames::Frames;
 use crate::simulation::Simulation;
 
-/// Records `sim` from now for `args.seconds`, `args.fps` frames a
+/// Records `sim` from now for `args.seconds`, `args.clip.fps` frames a
 /// simulated second, into `args.out`.
 pub fn record(sim: &mut Simulation, light: &LightConfig, args: &RecordArgs) -> anyhow::Result<()> {
     if args.frame.fireball {
         sim.world.launch_fireball(None);
     }
-    let mut frames = Frames::new(sim.world.config(), &args.frame, args.size)?;
-    let count = frame_count(args.seconds, args.fps);
+    let mut frames = Frames::new(sim.world.config(), &args.frame, args.clip.size)?;
+    let count = frame_count(args.seconds, args.clip.fps);
     let dt = sim.world.config().solver.dt;
     let mut steps_done = 0;
-    write_clip(&args.out, args.size, args.fps, count, |k| {
+    write_clip(&args.out, args.clip.size, args.clip.fps, count, |k| {
         // Frame k shows the moment k / fps, the same step `render --time`
         // would stop at.
-        let steps = steps_for(f64::from(k) / f64::from(args.fps), dt);
+        let steps = steps_for(f64::from(k) / f64::from(args.clip.fps), dt);
         sim.ticks(steps - steps_done);
         steps_done = steps;
         frames.draw(sim, light)
     })?;
-    let (width, height) = args.size;
+    let (width, height) = args.clip.size;
     println!(
         "wrote {} ({count} frames of {width}x{height} at {} frames per second, t = 0 to {:.3} s, {})",
         args.out.display(),
-        args.fps,
+        args.clip.fps,
         sim.world.time(),
         frames.describe()
     );

@@ -53,7 +53,7 @@ fn clip(
     out: &std::path::Path,
 ) -> anyhow::Result<()> {
     let config = sandbox.world().config().clone();
-    let mut frames = Frames::new(&config, &args.frame, args.size)?;
+    let mut frames = Frames::new(&config, &args.frame, args.clip.size)?;
     let dt = config.solver.dt;
     let seconds = (log.to_tick - log.from_tick) as f64 * dt;
     if seconds > MAX_CLIP_SECONDS {
@@ -61,10 +61,10 @@ fn clip(
             "the recording spans {seconds:.0} s; a clip is at most {MAX_CLIP_SECONDS} s (play it in the window instead)"
         );
     }
-    let count = frame_count(seconds, args.fps);
+    let count = frame_count(seconds, args.clip.fps);
     let overview = Camera::overview(config.room.size.as_vec3());
-    write_clip(out, args.size, args.fps, count, |k| {
-        let tick = log.from_tick + steps_for(f64::from(k) / f64::from(args.fps), dt);
+    write_clip(out, args.clip.size, args.clip.fps, count, |k| {
+        let tick = log.from_tick + steps_for(f64::from(k) / f64::from(args.clip.fps), dt);
         sandbox.replay_until(tick.min(log.to_tick));
         let camera = match (&args.frame.camera, &sandbox.view_pose) {
             (None, Some(pose)) => FlyCamera::posed(pose, &overview).camera(),
@@ -74,7 +74,7 @@ fn clip(
         frames.draw_from(&sandbox.sim, &light, &camera)
     })?;
     sandbox.replay_until(u64::MAX);
-    let (width, height) = args.size;
+    let (width, height) = args.clip.size;
     println!(
         "wrote {} ({count} frames of {width}x{height}, ticks {} to {} of the recording, {})",
         out.display(),
