@@ -5,17 +5,20 @@
 //! ([`EffectsConfig`], the file's `[effects]`) and the ceiling light
 //! ([`LightConfig`], the file's `[light]`). A file may set any subset of
 //! keys; everything it leaves out keeps the value of [`WorldConfig::default`],
-//! [`EffectsConfig::default`] or [`LightConfig::default`]. The file is parsed
-//! into a partial schema whose tables all reject unknown keys, so a typo is an
-//! error instead of a silently ignored setting. Every value read from the file keeps its source
-//! span, so a range error can point at the line where the value was written.
+//! [`EffectsConfig::default`] or [`LightConfig::default`]. Every key is in
+//! one table, [`keys::KEYS`]: its name, where its value lives, its range,
+//! when a running sandbox takes a change, its panel control and its doc
+//! line. A key the table does not know is an error instead of a silently
+//! ignored setting, and every value read keeps its line, so that a range
+//! error can point at where it was written.
 //!
-//! The parts, a file each: `file`, the schema a file is parsed into;
-//! `overlay`, which lays it over the defaults and notes the line of each
-//! key; `checks`, the ranges every value must lie in; `save`, a scene
-//! written back as a file of the keys that differ from the default.
+//! The parts, a file each: `keys`, the table; `read`, which walks a file
+//! against it and lays the values over the defaults (`lists`, the keys
+//! that hold lists of entries); `checks`, the ranges every value must lie
+//! in (`bounds`, an interval as messages show it); `save`, a scene written
+//! back as a file of the keys that differ from the default; `reference`,
+//! the table as the Markdown of `docs/scenes.md`.
 
-use std::collections::HashMap;
 use std::fmt;
 use std::path::Path;
 
@@ -23,14 +26,16 @@ use rolypoly_fx::EffectsConfig;
 use rolypoly_physics::WorldConfig;
 use rolypoly_render::LightConfig;
 
+mod bounds;
 mod checks;
-mod file;
-mod overlay;
+pub mod keys;
+mod lists;
+mod read;
+pub mod reference;
 mod save;
 
 use checks::{Checker, Sources};
-use file::FileScene;
-use overlay::Overlay;
+use read::Reader;
 pub use save::scene_file_text;
 
 /// Where the configuration comes from when no scene file is given.
@@ -44,9 +49,6 @@ pub const TUMBLER_SPHERES: usize = 6;
 
 /// Smallest and largest particle capacity a scene may ask for.
 pub const PARTICLE_CAPACITY: (usize, usize) = (16, 1_000_000);
-
-/// Names of the room's surfaces, in the order of `RoomConfig::colors`.
-const SURFACE_NAMES: [&str; 6] = ["floor", "ceiling", "left", "right", "back", "front"];
 
 /// Where a value came from: a file (with the line, when known) or a
 /// command-line option.
@@ -183,17 +185,10 @@ fn build(source: Option<&str>, origin: &str, overrides: &Overrides) -> Result<Sc
     let mut scene = Scene::default();
     let mut sources = Sources::new(origin, source.is_some());
     if let Some(source) = source {
-        let file: FileScene =
-            toml::from_str(source).map_err(|e| syntax_error(&e, source, origin))?;
-        let mut overlay = Overlay {
-            source,
-            origin,
-            lines: HashMap::new(),
-            written: HashMap::new(),
-        };
-        overlay.apply(file, &mut scene)?;
-        sources.lines = overlay.lines;
-        sources.written = overlay.written;
+        let mut reader = Reader::new(source, origin);
+        reader.read(&mut scene)?;
+        sources.lines = reader.lines;
+        sources.written = reader.written;
     }
     if let Some(count) = overrides.balls {
         scene.world.balls.count = count;
@@ -221,96 +216,6 @@ fn line_of(source: &str, offset: usize) -> usize {
         .filter(|&&b| b == b'\n')
         .count()
         + 1
-}
-
-fn syntax_error(error: &toml::de::Error, source: &str, origin: &str) -> SceneError {
-    let line = error.span().map(|span| line_of(source, span.start));
-    // toml's messages are one line per fact; keep them on one line.
-    let message = error
-        .message()
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join("; ")
-        .replacen("unknown field", "unknown key", 1)
-        .replacen("missing field", "missing key", 1);
-    let message = in_scene_words(&message);
-    SceneError::Syntax {
-        at: Location {
-            origin: origin.to_owned(),
-            line,
-        },
-        message: qualify_unknown_key(message, source, line),
-    }
-}
-
-/// Says what a value should have been in the words of a TOML scene file,
-/// not of the program that reads it: "expected f64" becomes "expected a
-/// number", "expected struct FileRoom" "expected a table of keys".
-fn in_scene_words(message: &str) -> String {
-    let Some((head, expected)) = message.rsplit_once("expected ") else {
-        return message.to_owned();
-    };
-    let plain = match expected {
-        "f64" | "f32" => "a number",
-        "i64" | "u64" | "u32" | "usize" => "a whole number",
-        "a sequence" => "an array",
-        "a map" => "a table of keys",
-        struct_name if struct_name.starts_with("struct File") => "a table of keys",
-        _ => return message.to_owned(),
-    };
-    format!("{head}expected {plain}")
-}
-
-/// Turns "unknown key `colour`" into "unknown key `balls.colour`" when the
-/// offending line is a plain `key = value` under a table header, so the
-/// user sees the full path of what was not understood.
-fn qualify_unknown_key(message: String, source: &str, line: Option<usize>) -> String {
-    let Some(rest) = message.strip_prefix("unknown key `") else {
-        return message;
-    };
-    let Some((key, tail)) = rest.split_once('`') else {
-        return message;
-    };
-    match line.and_then(|line| table_of_key(source, line, key)) {
-        Some(table) if !table.is_empty() => format!("unknown key `{table}.{key}`{tail}"),
-        _ => message,
-    }
-}
-
-/// The table header in effect for `key = ...` on 1-based `line`, or `None`
-/// when that line is not such an assignment. An empty string is the top level.
-fn table_of_key(source: &str, line: usize, key: &str) -> Option<String> {
-    let lines: Vec<&str> = source.lines().collect();
-    let text = lines.get(line.checked_sub(1)?)?.trim_start();
-    if !text.strip_prefix(key)?.trim_start().starts_with('=') {
-        return None;
-    }
-    let header = lines[..line - 1].iter().rev().find_map(|l| table_header(l));
-    Some(header.unwrap_or_default())
-}
-
-/// The dotted name of a `[table]` or `[[array]]` header line.
-fn table_header(line: &str) -> Option<String> {
-    let line = line.split('#').next()?.trim();
-    let inner = line
-        .strip_prefix("[[")
-        .and_then(|l| l.strip_suffix("]]"))
-        .or_else(|| line.strip_prefix('[').and_then(|l| l.strip_suffix(']')))?
-        .trim();
-    // Rejects lines of a multi-line array such as `[0.1, 0.2, 0.3],`.
-    let is_name = inner.starts_with(|c: char| c.is_ascii_alphabetic() || c == '"' || c == '\'')
-        && inner
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.' | ' ' | '"' | '\''));
-    is_name.then(|| {
-        inner
-            .split('.')
-            .map(str::trim)
-            .collect::<Vec<_>>()
-            .join(".")
-    })
 }
 
 #[cfg(test)]

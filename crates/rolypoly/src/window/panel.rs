@@ -10,6 +10,7 @@ use std::path::PathBuf;
 
 use crate::sandbox::{SHIPPED_SCENES, Sandbox, THROW_SPEEDS, TIME_SCALES};
 use crate::scene::Scene;
+use crate::scene::keys::{Control, KEYS, Slot, Takes};
 
 /// Widest the panel gets (points), and the share of a narrow window it may
 /// take; a window too small for even [`MIN_PANEL`] shows no panel, and
@@ -141,10 +142,10 @@ impl Panel {
         let mut scene = sandbox.scene().clone();
         ui.separator();
         ui.strong("Physics, from the next step");
-        live_settings(ui, &mut scene);
+        settings(ui, &mut scene, Takes::NextStep);
         ui.separator();
         ui.strong("On restart (I)");
-        restart_settings(ui, &mut scene);
+        settings(ui, &mut scene, Takes::Restart);
         if sandbox.restart_pending() {
             ui.colored_label(
                 egui::Color32::from_rgb(255, 200, 80),
@@ -156,7 +157,7 @@ impl Panel {
         }
         ui.separator();
         ui.strong("Light");
-        light_settings(ui, &mut scene);
+        settings(ui, &mut scene, Takes::NextFrame);
         if scene != *sandbox.scene() {
             self.message = sandbox.set_scene(scene).err().map(|e| e.to_string());
         }
@@ -215,81 +216,30 @@ fn number(ui: &mut egui::Ui, label: &str, value: &mut f64, range: RangeInclusive
     ui.add(egui::Slider::new(value, range).text(label));
 }
 
-fn number32(ui: &mut egui::Ui, label: &str, value: &mut f32, range: RangeInclusive<f32>) {
-    ui.add(egui::Slider::new(value, range).text(label));
-}
-
-fn whole(ui: &mut egui::Ui, label: &str, value: &mut usize, range: RangeInclusive<usize>) {
-    ui.add(egui::Slider::new(value, range).text(label));
-}
-
-/// What a running world takes at its next step.
-fn live_settings(ui: &mut egui::Ui, scene: &mut Scene) {
-    let c = &mut scene.world;
-    number(ui, "gravity, m/s²", &mut c.gravity, 0.0..=30.0);
-    number(ui, "ball restitution", &mut c.balls.restitution, 0.0..=1.0);
-    number(ui, "wall restitution", &mut c.room.restitution, 0.0..=1.0);
-    number(ui, "wall friction", &mut c.room.friction, 0.0..=1.5);
-    number(
-        ui,
-        "rolling resistance",
-        &mut c.room.rolling_resistance,
-        0.0..=0.2,
-    );
-    number(
-        ui,
-        "tumbler restitution",
-        &mut c.tumblers.restitution,
-        0.0..=1.0,
-    );
-    number(
-        ui,
-        "tumbler floor friction",
-        &mut c.tumblers.floor_friction,
-        0.0..=1.5,
-    );
-    number(ui, "tumbler damping", &mut c.tumblers.damping, 0.0..=10.0);
-    whole(ui, "solver iterations", &mut c.solver.iterations, 1..=64);
-    number(
-        ui,
-        "bounce threshold, m/s",
-        &mut c.solver.bounce_threshold,
-        0.0..=2.0,
-    );
-    number(
-        ui,
-        "event threshold, m/s",
-        &mut c.solver.event_threshold,
-        0.0..=5.0,
-    );
-    number(
-        ui,
-        "fireball speed, m/s (F)",
-        &mut c.fireball.speed,
-        0.5..=30.0,
-    );
-    number(ui, "grab spring, N/m", &mut c.grab.stiffness, 1.0..=2000.0);
-    number(ui, "grab damping, N s/m", &mut c.grab.damping, 0.0..=200.0);
-}
-
-/// What only a world built anew takes.
-fn restart_settings(ui: &mut egui::Ui, scene: &mut Scene) {
-    let b = &mut scene.world.balls;
-    whole(ui, "balls", &mut b.count, 0..=20_000);
-    number(ui, "ball radius, m", &mut b.radius, 0.02..=0.5);
-    number(ui, "ball mass, kg", &mut b.mass, 0.01..=20.0);
-}
-
-fn light_settings(ui: &mut egui::Ui, scene: &mut Scene) {
-    let l = &mut scene.light;
-    number32(ui, "intensity", &mut l.intensity, 0.0..=40.0);
-    number32(ui, "ambient", &mut l.ambient, 0.0..=1.0);
-    ui.checkbox(&mut l.bloom, "bloom");
-    number32(ui, "bloom strength", &mut l.bloom_strength, 0.0..=4.0);
-    number32(ui, "bloom threshold", &mut l.bloom_threshold, 0.1..=20.0);
-    ui.checkbox(&mut l.fireball_light, "fireball light");
-    ui.checkbox(&mut l.indirect, "bounce light");
-    ui.checkbox(&mut l.occlusion, "contact occlusion");
+/// The controls of the keys the panel shows that take effect `when`, in
+/// the order of the table of keys.
+fn settings(ui: &mut egui::Ui, scene: &mut Scene, when: Takes) {
+    for key in KEYS.iter().filter(|k| k.takes == when) {
+        match (key.control, &key.slot) {
+            (Control::Hidden, _) => {}
+            (Control::Checkbox(label), Slot::Switch(place)) => {
+                ui.checkbox((place.write)(scene), label);
+            }
+            (Control::Slider(label, lo, hi), Slot::Real(place)) => {
+                number(ui, label, (place.write)(scene), lo..=hi);
+            }
+            (Control::Slider(label, lo, hi), Slot::Single(place)) => {
+                let range = lo as f32..=hi as f32;
+                ui.add(egui::Slider::new((place.write)(scene), range).text(label));
+            }
+            (Control::Slider(label, lo, hi), Slot::Count(place)) => {
+                let range = lo as usize..=hi as usize;
+                ui.add(egui::Slider::new((place.write)(scene), range).text(label));
+            }
+            // The table's own test rules out other pairs.
+            (control, _) => unreachable!("{}: no {control:?} for its type", key.name),
+        }
+    }
 }
 
 #[cfg(test)]
