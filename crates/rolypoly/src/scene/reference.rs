@@ -1,12 +1,16 @@
-//! The reference of every scene key, written from the table of keys as a
-//! Markdown table: `docs/scenes.md` holds it, and a test fails when the
-//! page and the table disagree.
+//! The table of keys written out for people: as the Markdown reference in
+//! `docs/scenes.md`, and as `scenes/default.toml`, the default scene with
+//! every key and its comment. Tests fail when either file and the table
+//! disagree.
 
 use std::fmt::Write as _;
+
+use toml::Value;
 
 use super::Scene;
 use super::bounds::{number_text, widen};
 use super::keys::{Allowed, Control, KEYS, Key, List, Slot, Takes};
+use super::save::value_of;
 
 /// The lines that open and close the reference in `docs/scenes.md`.
 pub const BEGIN_MARK: &str = "<!-- The key reference, written from the table of keys (crates/rolypoly/src/scene/keys.rs). -->";
@@ -45,6 +49,95 @@ pub fn key_reference() -> String {
         );
     }
     text
+}
+
+/// What `scenes/default.toml` says before its keys.
+const DEFAULT_SCENE_HEADER: &str = "\
+The default rolypoly scene, written out in full.
+
+This file is the documented example of the scene format: the program has
+the same scene built in, and it is written from the program's table of
+scene keys (docs/scenes.md has the same as a table). Run with your own
+scene file:
+
+    rolypoly --scene my-scene.toml
+    rolypoly simulate --scene my-scene.toml --seconds 10
+
+A scene file only needs the keys it changes; every key left out keeps the
+value shown here. Unknown keys are an error, and every value is checked
+against what its comment allows.
+
+Units are SI (metres, kilograms, seconds). +y is up, the floor is y = 0 and
+the room is centred on x = z = 0. Colours are linear [r, g, b].";
+
+/// The default scene as a file: every key under its table, each with its
+/// doc line and what it allows as a comment.
+pub fn default_scene_file() -> String {
+    let scene = Scene::default();
+    let mut text = comment(DEFAULT_SCENE_HEADER);
+    let mut table = "";
+    for key in KEYS {
+        let (in_table, leaf) = key.table_and_leaf();
+        if in_table != table {
+            table = in_table;
+            let _ = write!(text, "\n[{table}]\n");
+        } else {
+            text.push('\n');
+        }
+        text += &comment(key.doc);
+        if !matches!(key.allowed, Allowed::ListRules) {
+            text += &comment(&format!("Allowed: {}.", allowed_text(key, &scene)));
+        }
+        let value = value_of(key, &scene);
+        let _ = writeln!(text, "{leaf} = {}", multi_line(&value));
+    }
+    text
+}
+
+/// `text` as comment lines of at most 78 characters, never breaking a
+/// range such as `0 ..= 1` or `> 0`.
+fn comment(text: &str) -> String {
+    const KEEP: char = '\u{1}';
+    let kept = text
+        .replace(" ..= ", &format!("{KEEP}..={KEEP}"))
+        .replace("> ", &format!(">{KEEP}"))
+        .replace("< ", &format!("<{KEEP}"))
+        .replace("<= ", &format!("<={KEEP}"));
+    let mut out = String::new();
+    for paragraph in kept.split('\n') {
+        if paragraph.starts_with("    ") || paragraph.is_empty() {
+            out += format!("# {paragraph}").trim_end();
+            out.push('\n');
+            continue;
+        }
+        let mut line = String::from("#");
+        for word in paragraph.split(' ') {
+            if line.len() + 1 + word.len() > 78 && line.len() > 1 {
+                out += &line;
+                out.push('\n');
+                line = String::from("#");
+            }
+            line.push(' ');
+            line += word;
+        }
+        out += &line;
+        out.push('\n');
+    }
+    out.replace(KEEP, " ")
+}
+
+/// A value as a file writes it; a list of entries one entry a line.
+fn multi_line(value: &Value) -> String {
+    match value {
+        Value::Array(items) if items.iter().any(|v| v.is_table() || v.is_array()) => {
+            let mut text = String::from("[\n");
+            for item in items {
+                let _ = writeln!(text, "    {item},");
+            }
+            text + "]"
+        }
+        _ => value.to_string(),
+    }
 }
 
 fn type_name(key: &Key) -> &'static str {
@@ -87,7 +180,7 @@ fn default_text(key: &Key, scene: &Scene) -> String {
 
 fn allowed_text(key: &Key, scene: &Scene) -> String {
     match key.allowed {
-        Allowed::Any => "either".into(),
+        Allowed::Any => "true or false".into(),
         Allowed::Within(bounds) => bounds.to_string(),
         Allowed::Derived(bounds, why) => {
             format!("{why}: {} in the default scene", bounds(scene))
@@ -132,6 +225,33 @@ mod tests {
             "docs/scenes.md's key reference is stale: run \
              ROLYPOLY_BLESS=1 cargo test -p rolypoly --lib reference"
         );
+    }
+
+    const DEFAULT_SCENE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/default.toml");
+
+    /// Fails when scenes/default.toml is not the table's; run with
+    /// ROLYPOLY_BLESS=1 to write it anew.
+    #[test]
+    fn the_default_scene_file_is_the_table_of_keys() {
+        let file = std::fs::read_to_string(DEFAULT_SCENE).unwrap();
+        let expected = default_scene_file();
+        if std::env::var_os("ROLYPOLY_BLESS").is_some() {
+            std::fs::write(DEFAULT_SCENE, &expected).unwrap();
+        }
+        assert!(
+            file == expected,
+            "scenes/default.toml is stale: run \
+             ROLYPOLY_BLESS=1 cargo test -p rolypoly --lib reference"
+        );
+        // And it is the default scene, every key written.
+        assert_eq!(
+            super::super::parse_scene(&expected, "default.toml").unwrap(),
+            Scene::default()
+        );
+        for key in KEYS {
+            let leaf = key.table_and_leaf().1;
+            assert!(expected.contains(&format!("\n{leaf} = ")), "{}", key.name);
+        }
     }
 
     #[test]

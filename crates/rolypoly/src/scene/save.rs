@@ -7,7 +7,7 @@ use rolypoly_physics::Rgb;
 use toml::{Table, Value};
 
 use super::Scene;
-use super::keys::{KEYS, List, Slot};
+use super::keys::{KEYS, Key, List, Slot};
 
 /// The text of a scene file for `scene`: `header` as comment lines, then
 /// the keys that differ from the default scene.
@@ -92,18 +92,22 @@ fn insert_at(table: &mut Table, path: &str, value: Value) {
 fn every_key(scene: &Scene) -> Table {
     let mut file = Table::new();
     for key in KEYS {
-        let value = match &key.slot {
-            Slot::Real(place) => real(*(place.read)(scene)),
-            Slot::Single(place) => short(*(place.read)(scene)),
-            Slot::Count(place) => count(*(place.read)(scene)),
-            Slot::Switch(place) => Value::Boolean(*(place.read)(scene)),
-            Slot::Vector(place) => vec3(*(place.read)(scene)),
-            Slot::Color(place) => rgb(*(place.read)(scene)),
-            Slot::List(list) => Value::Array(list_entries(*list, scene)),
-        };
-        insert_at(&mut file, key.name, value);
+        insert_at(&mut file, key.name, value_of(key, scene));
     }
     file
+}
+
+/// The value of `key` in `scene`, as a file writes it.
+pub(super) fn value_of(key: &Key, scene: &Scene) -> Value {
+    match &key.slot {
+        Slot::Real(place) => real(*(place.read)(scene)),
+        Slot::Single(place) => short(*(place.read)(scene)),
+        Slot::Count(place) => count(*(place.read)(scene)),
+        Slot::Switch(place) => Value::Boolean(*(place.read)(scene)),
+        Slot::Vector(place) => vec3(*(place.read)(scene)),
+        Slot::Color(place) => rgb(*(place.read)(scene)),
+        Slot::List(list) => Value::Array(list_entries(*list, scene)),
+    }
 }
 
 /// The entries of `list` as a file writes them.
