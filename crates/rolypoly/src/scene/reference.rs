@@ -173,7 +173,10 @@ fn default_text(key: &Key, scene: &Scene) -> String {
                 List::TumblerSpheres => world.tumblers.spheres.len(),
                 List::TumblerPlacements => world.tumblers.placements.len(),
             };
-            format!("{n} entries (scenes/default.toml)")
+            match n {
+                0 => "none".into(),
+                n => format!("{n} entries (scenes/default.toml)"),
+            }
         }
     }
 }
