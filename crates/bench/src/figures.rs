@@ -207,7 +207,7 @@ pub fn energy_over_time(config: WorldConfig, seconds: f64) -> Vec<(f64, f64)> {
     let mut samples = vec![(0.0, 1.0)];
     while world.time() < seconds {
         world.step();
-        if world.step_count() % every == 0 {
+        if world.step_count().is_multiple_of(every) {
             samples.push((world.time(), world.energy().total() / start));
         }
     }

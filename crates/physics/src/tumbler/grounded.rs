@@ -83,12 +83,13 @@ pub(crate) fn grounded_solve(
         }
     }
     let x = solve6(a, [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z]);
-    if let FloorMode::Sliding(_) = mode {
-        if x[3] < 0.0 && friction > 0.0 {
-            // The floor would have to pull down: it cannot, so there is no
-            // friction either (the bottom stays on the floor; see module doc).
-            return grounded_solve(shape, orientation, mode, 0.0, lin, ang);
-        }
+    if let FloorMode::Sliding(_) = mode
+        && x[3] < 0.0
+        && friction > 0.0
+    {
+        // The floor would have to pull down: it cannot, so there is no
+        // friction either (the bottom stays on the floor; see module doc).
+        return grounded_solve(shape, orientation, mode, 0.0, lin, ang);
     }
     GroundedSolution {
         dw: DVec3::new(x[0], x[1], x[2]),

@@ -69,10 +69,10 @@ impl World {
                 for s in Surface::ALL {
                     let n = s.inward_normal();
                     let d0 = room.distance(s, x) - r;
-                    if let Some(t) = first_impact(d0, n.dot(u), n.dot(g), left) {
-                        if first.is_none_or(|(best, _)| t < best) {
-                            first = Some((t, s));
-                        }
+                    if let Some(t) = first_impact(d0, n.dot(u), n.dot(g), left)
+                        && first.is_none_or(|(best, _)| t < best)
+                    {
+                        first = Some((t, s));
                     }
                 }
                 let Some((t, s)) = first else {

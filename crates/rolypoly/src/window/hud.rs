@@ -102,7 +102,7 @@ impl HudState {
         self.paused = paused;
         self.grabbing = grabbing;
         self.sim_time = world.time();
-        if self.frames % 4 == 0 && !paused {
+        if self.frames.is_multiple_of(4) && !paused {
             if self.energy.len() == ENERGY_SAMPLES {
                 self.energy.pop_front();
             }
@@ -221,10 +221,10 @@ impl Hud {
                     if !modes.is_empty() {
                         ui.colored_label(egui::Color32::from_rgb(255, 200, 80), modes.join("  "));
                     }
-                    if let Some((message, until)) = &s.message {
-                        if std::time::Instant::now() < *until {
-                            ui.colored_label(egui::Color32::from_rgb(255, 200, 80), message);
-                        }
+                    if let Some((message, until)) = &s.message
+                        && std::time::Instant::now() < *until
+                    {
+                        ui.colored_label(egui::Color32::from_rgb(255, 200, 80), message);
                     }
                     energy_plot(ui, &s.energy);
                     ui.small("H or F1: keys, Tab: sandbox panel");

@@ -202,12 +202,12 @@ impl App {
             }
             MouseMode::Grab => {
                 self.cursor = at;
-                if let Some(height) = self.drag_height {
-                    if let Some(target) = self.cursor_on_plane(height) {
-                        let _ = self.sandbox.apply(Input::Drag {
-                            to: target.to_array(),
-                        });
-                    }
+                if let Some(height) = self.drag_height
+                    && let Some(target) = self.cursor_on_plane(height)
+                {
+                    let _ = self.sandbox.apply(Input::Drag {
+                        to: target.to_array(),
+                    });
                 }
             }
             MouseMode::Free => {}
