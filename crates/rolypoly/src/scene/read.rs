@@ -12,7 +12,7 @@ use serde::de::{Error as _, Unexpected};
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-use super::keys::{Allowed, KEYS, Key, Place, Slot};
+use super::keys::{Allowed, KEYS, Key, Place, Slot, key};
 use super::{Location, Scene, SceneError, line_of};
 
 /// What a value should have been, in the words of a scene file.
@@ -107,7 +107,7 @@ impl<'a> Reader<'a> {
             } else {
                 format!("{path}.{}", name.get_ref())
             };
-            if let Some(key) = KEYS.iter().find(|k| k.name == full) {
+            if let Some(key) = key(&full) {
                 self.value(key, value, scene)?;
             } else if is_table(&full) {
                 match value.get_ref() {
@@ -214,24 +214,14 @@ impl<'a> Reader<'a> {
         found: &DeValue,
         expected: &str,
     ) -> SceneError {
-        let integer;
-        let float;
         let unexpected = match found {
             DeValue::String(s) => Unexpected::Str(s),
-            DeValue::Integer(n) => match i64::from_str_radix(n.as_str(), n.radix()) {
-                Ok(n) => {
-                    integer = n;
-                    Unexpected::Signed(integer)
-                }
-                Err(_) => Unexpected::Other("integer"),
-            },
-            DeValue::Float(x) => match x.as_str().parse() {
-                Ok(x) => {
-                    float = x;
-                    Unexpected::Float(float)
-                }
-                Err(_) => Unexpected::Other("floating point"),
-            },
+            DeValue::Integer(n) => i64::from_str_radix(n.as_str(), n.radix())
+                .map_or(Unexpected::Other("integer"), Unexpected::Signed),
+            DeValue::Float(x) => x
+                .as_str()
+                .parse()
+                .map_or(Unexpected::Other("floating point"), Unexpected::Float),
             DeValue::Boolean(b) => Unexpected::Bool(*b),
             DeValue::Datetime(_) => Unexpected::Other("date-time"),
             DeValue::Array(_) => Unexpected::Seq,
