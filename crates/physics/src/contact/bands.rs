@@ -120,7 +120,7 @@ impl Band for RowBand {
 /// in turn. Items next to each other in a band mostly share a ball, and
 /// each would wait for the last one's write to it; the quarters lie apart
 /// in space, so the processor works on four at once.
-#[inline]
+#[inline(always)]
 pub(super) fn in_four_streams<F: FnMut(usize)>(count: usize, mut visit: F) {
     let quarter = count / 4;
     for k in 0..quarter {

@@ -348,20 +348,6 @@ impl Contacts {
         }
     }
 
-    /// Calls `change(pair)` on every pair, on all threads when there are
-    /// many: each pair on its own, so the result is the same.
-    pub fn update_pairs<F>(&mut self, change: F)
-    where
-        F: Fn(&mut Pair) + Sync,
-    {
-        let band = |band: &mut Vec<Pair>| band.iter_mut().for_each(&change);
-        if self.pair_count() >= PARALLEL_PAIRS {
-            self.bands.par_iter_mut().for_each(band);
-        } else {
-            self.bands.iter_mut().for_each(band);
-        }
-    }
-
     /// Calls `solve(contact, bodies)` for every contact with a tumbler.
     fn sweep_tumblers<G>(&mut self, bodies: &mut Bodies, mut solve: G)
     where
@@ -399,14 +385,13 @@ impl Contacts {
     }
 
     /// Fills the rows from the pairs that `row` chooses, band by band and in
-    /// order, with the target and starting impulse it gives them, and
-    /// applies the starting impulses to the balls.
-    fn start_rows<F>(&mut self, balls: &mut Balls, row: F)
+    /// order, with the target and starting impulse it gives them (applied
+    /// by [`Contacts::start_rows`]).
+    fn build_rows<F>(&mut self, inv_mass: &[f64], row: F)
     where
         F: Fn(&mut Pair) -> Option<(f64, f64)> + Sync,
     {
         self.rows.resize_with(self.bands.len(), RowBand::default);
-        let inv_mass = &balls.inv_mass;
         let build = |(band, rows): (&mut Vec<Pair>, &mut RowBand)| {
             rows.rows.clear();
             rows.impulses.clear();
@@ -425,6 +410,11 @@ impl Contacts {
         } else {
             self.bands.iter_mut().zip(&mut self.rows).for_each(build);
         }
+    }
+
+    /// Applies the rows' starting impulses to the balls.
+    fn start_rows(&mut self, balls: &mut Balls) {
+        let inv_mass = &balls.inv_mass;
         let start = |band: &mut RowBand, velocity: &mut [DVec3], first: usize| {
             for (r, &impulse) in band.rows.iter().zip(&band.impulses) {
                 if impulse > 0.0 {
@@ -440,9 +430,13 @@ impl Contacts {
         let inv_mass = &balls.inv_mass;
         let solve = |band: &mut RowBand, velocity: &mut [DVec3], first: usize| {
             let (rows, impulses) = (&band.rows, &mut band.impulses[..]);
-            in_four_streams(rows.len(), |k| {
-                rows[k].solve(&mut impulses[k], velocity, first, inv_mass)
-            });
+            // Inlined by force: left to the compiler, a change elsewhere in
+            // the crate may make each row a call, a fifth slower a sweep.
+            in_four_streams(
+                rows.len(),
+                #[inline(always)]
+                |k| rows[k].solve(&mut impulses[k], velocity, first, inv_mass),
+            );
         };
         sweep_bands(&mut self.rows, &self.layers, &mut balls.velocity, &solve);
     }

@@ -39,7 +39,10 @@ pub(crate) struct StepContext<'a> {
 /// With `warm` (last step's impulses and each slot's ball number) pairs and
 /// ball-wall contacts start from the impulse that held them last step; the
 /// impulses they end with are kept for [`solve_project`] to record.
-pub(crate) fn solve_predict(step: &mut StepContext) {
+///
+/// `hand(pair, balls)` finishes each pair before anything reads it: the
+/// impacts resolved before this stage hand it their outcome.
+pub(crate) fn solve_predict(step: &mut StepContext, hand: &(dyn Fn(&mut Pair, &Balls) + Sync)) {
     let StepContext {
         dt,
         iterations,
@@ -56,6 +59,18 @@ pub(crate) fn solve_predict(step: &mut StepContext) {
     // once they touch within the step.
     let touching =
         |gap: f64, approach: f64, kick: f64| gap + (approach + kick).min(0.0) * dt <= TOUCHING;
+    // Pairs never bounce here, so all start warm. One lookup finds the
+    // project stage's start too. The rows are built before the crowd reads
+    // the pairs, each pair handed its impacts' outcome first, and they
+    // start once the other contacts are ready.
+    let balls = &*bodies.balls;
+    contacts.build_rows(&balls.inv_mass, |p| {
+        hand(p, balls);
+        let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
+        let held = warm_pair(warm, p);
+        p.project_start = held[Stage::Project as usize];
+        Some((target, share(warm, held[Stage::Predict as usize])))
+    });
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
     let may_bounce = !contacts.tumbler_contacts.is_empty();
     crowd.forget_asked(bodies.balls.len());
@@ -85,14 +100,7 @@ pub(crate) fn solve_predict(step: &mut StepContext) {
         c.bounce =
             c.approach < -bounce_threshold && c.gap + c.approach * dt <= 0.0 && crowd.lone(c);
     }
-    // Pairs never bounce here, so all start warm. One lookup finds the
-    // project stage's start too.
-    contacts.start_rows(bodies.balls, |p| {
-        let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
-        let held = warm_pair(warm, p);
-        p.project_start = held[Stage::Project as usize];
-        Some((target, share(warm, held[Stage::Predict as usize])))
-    });
+    contacts.start_rows(bodies.balls);
     if let Some((warm, ids)) = warm {
         warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Predict);
     }
@@ -233,7 +241,7 @@ pub(crate) fn solve_project(step: &mut StepContext) {
     // Only the pairs that pushed take part.
     // A bouncing pair starts cold: its impulse is of this impact alone.
     let crowd = &*crowd;
-    contacts.start_rows(bodies.balls, |p| {
+    contacts.build_rows(&bodies.balls.inv_mass, |p| {
         p.pushed.then(|| {
             let bounce = p.approach < -bounce_threshold
                 && !hit_wall[p.i as usize]
@@ -246,6 +254,7 @@ pub(crate) fn solve_project(step: &mut StepContext) {
             }
         })
     });
+    contacts.start_rows(bodies.balls);
     if let Some((warm, ids)) = warm {
         warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Project);
     }

@@ -9,7 +9,15 @@ use crate::room::Surface;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::impacts::{closes_fast, impact_threshold};
 use super::{TOUCH_SLOP, World};
+
+/// What the pair search fills for one grid layer: its band of pairs, their
+/// slots, and the slots of those due to collide (see `impacts`).
+type BandOut<'a> = (
+    (&'a mut Vec<Pair>, &'a mut Vec<PairSlots>),
+    &'a mut Vec<PairSlots>,
+);
 
 impl World {
     /// All contacts that may act during the coming step.
@@ -56,7 +64,10 @@ impl World {
         let grid = &self.grid;
         contacts.reset(grid.layer_count());
         grid.layer_slots(&mut contacts.layers);
-        let find_pairs = |(z, (band, slots)): (usize, (&mut Vec<Pair>, &mut Vec<PairSlots>))| {
+        // The impacts stage's pairs, picked out here while each is at hand.
+        let due_bands = self.scratch.impacts.due_bands(grid.layer_count());
+        let threshold = impact_threshold(&self.config);
+        let find_pairs = |(z, ((band, slots), due)): (usize, BandOut)| {
             grid.for_each_close_pair_in_layer(spheres, z, |i, j| {
                 let d = balls.position[i] - balls.position[j];
                 let dist = d.length();
@@ -72,8 +83,12 @@ impl World {
                     let (n, gap) = contact_normal(d, relative, reach, dt, f64::INFINITY)
                         .unwrap_or((d / dist, gap));
                     // Approach speed before anything moves: what restitution acts on.
-                    band.push(Pair::new(i, j, n, gap, relative.dot(n)));
+                    let approach = relative.dot(n);
+                    band.push(Pair::new(i, j, n, gap, approach));
                     slots.push([i as u32, j as u32]);
+                    if closes_fast(gap, approach, threshold, dt) {
+                        due.push([i as u32, j as u32]);
+                    }
                 }
             });
         };
@@ -84,11 +99,12 @@ impl World {
                 .bands
                 .par_iter_mut()
                 .zip(&mut contacts.pair_slots)
+                .zip(due_bands)
                 .enumerate()
                 .for_each(find_pairs);
         } else {
             let bands = contacts.bands.iter_mut().zip(&mut contacts.pair_slots);
-            bands.enumerate().for_each(find_pairs);
+            bands.zip(due_bands).enumerate().for_each(find_pairs);
         }
         contacts.count_pairs();
     }

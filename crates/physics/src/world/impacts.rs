@@ -24,12 +24,14 @@
 //! a ball alone meets its walls exactly in flight (see `flight`), and a
 //! tumbler's impacts bounce in the predict stage.
 
-use crate::balls::Tint;
+use crate::balls::{Balls, Tint};
 use crate::ccd::{bounce_off_wall, contact_normal, first_impact, first_touch};
-use crate::contact::{Pair, PairSlots};
+use crate::config::WorldConfig;
+use crate::contact::{PARALLEL_PAIRS, Pair, PairSlots, solve_predict};
 use crate::events::{Event, EventKind};
 use crate::room::Surface;
 use glam::DVec3;
+use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -112,18 +114,25 @@ pub(super) struct Impacts {
     /// Per slot: how many impacts it has met this step, and when the last.
     met: Vec<u32>,
     last: Vec<f64>,
+    /// Per slot that met an impact: its velocity before the first.
+    start_velocity: Vec<DVec3>,
     /// The slots that met an impact this step.
     touched: Vec<u32>,
-    /// The pairs that may collide within the step, from the contacts.
-    due: Vec<Pair>,
+    /// Per band, the slots of the pairs that may collide within the step,
+    /// picked out as the pairs are found (see [`Impacts::due_bands`]).
+    due: Vec<Vec<PairSlots>>,
     /// Per slot, the balls it has a contact with this step (the pairs'
     /// other slots): `neighbours[first[i]..first[i + 1]]`.
     first: Vec<u32>,
     neighbours: Vec<u32>,
     /// Where the next neighbour of each slot goes while they are listed.
     cursor: Vec<u32>,
+    /// Per band of due pairs, the impacts they are found to be due.
+    found: Vec<Vec<Candidate>>,
     /// Whether the neighbours are listed this step (only once needed).
     listed: bool,
+    /// Whether any pair's contact is to be handed the impacts' outcome.
+    pairs_changed: bool,
     /// Per slot: whether it rests on another ball (see [`World::stacked`]),
     /// once asked: 0 not yet, 1 no, 2 yes; and the slots asked.
     stacked: Vec<u8>,
@@ -133,8 +142,14 @@ pub(super) struct Impacts {
 impl Impacts {
     /// Lists each slot's neighbours from the contacts' pairs, by counting
     /// sort: in slot order, whatever the threads found them in. `partners`
-    /// holds how many each slot has, counted while the pairs were found.
-    fn list_neighbours(&mut self, pair_slots: &[Vec<PairSlots>], partners: &[u8]) {
+    /// holds how many each slot has, counted while the pairs were found;
+    /// `layers` the first slot of each grid layer (see [`Contacts`]).
+    fn list_neighbours(
+        &mut self,
+        pair_slots: &[Vec<PairSlots>],
+        layers: &[usize],
+        partners: &[u8],
+    ) {
         let slots = partners.len();
         let first = &mut self.first;
         first.clear();
@@ -155,16 +170,28 @@ impl Impacts {
         }
         self.cursor.clear();
         self.cursor.extend_from_slice(&first[..slots]);
-        self.neighbours.clear();
+        // Every entry is written below: the old ones need no clearing.
         self.neighbours.resize(first[slots] as usize, 0);
-        for &[i, j] in pair_slots.iter().flatten() {
-            for (a, b) in [(i, j), (j, i)] {
-                let at = &mut self.cursor[a as usize];
-                self.neighbours[*at as usize] = b;
-                *at += 1;
-            }
-        }
+        let bands = Bands {
+            pair_slots,
+            layers,
+            first,
+        };
+        bands.scatter(0..pair_slots.len(), &mut self.cursor, &mut self.neighbours);
         self.listed = true;
+    }
+
+    /// Ready for `bands` bands of due pairs, emptied, for the pair search
+    /// to fill: the pairs whose contact, as found, [`closes_fast`].
+    pub(super) fn due_bands(&mut self, bands: usize) -> &mut [Vec<PairSlots>] {
+        self.due.resize_with(bands, Vec::new);
+        self.due.iter_mut().for_each(Vec::clear);
+        &mut self.due
+    }
+
+    /// Whether any pair is due.
+    fn any_due(&self) -> bool {
+        self.due.iter().any(|band| !band.is_empty())
     }
 
     /// Per slot: how far the start of its path moved this step.
@@ -175,6 +202,23 @@ impl Impacts {
     /// Whether slot `i` met an impact this step.
     fn met(&self, i: usize) -> bool {
         self.met[i] > 0
+    }
+
+    /// Slot `i`'s velocity as the stage began.
+    fn velocity_at_start(&self, i: usize, balls: &Balls) -> DVec3 {
+        if self.met(i) {
+            self.start_velocity[i]
+        } else {
+            balls.velocity[i]
+        }
+    }
+
+    /// Keeps slot `i`'s velocity `v` as the stage began, before its first
+    /// impact changes it.
+    fn keep_start_velocity(&mut self, i: usize, v: DVec3) {
+        if !self.met(i) {
+            self.start_velocity[i] = v;
+        }
     }
 
     /// Forgets the step's impacts, ready for `slots` balls.
@@ -195,6 +239,74 @@ impl Impacts {
         self.shift.resize(slots, DVec3::ZERO);
         self.met.resize(slots, 0);
         self.last.resize(slots, 0.0);
+        self.start_velocity.resize(slots, DVec3::ZERO);
+    }
+}
+
+/// Below this many pairs, a run of bands lists its neighbours on one thread.
+const LIST_ALONE: usize = 16_384;
+
+/// The pairs' slots band by band, as [`Impacts::list_neighbours`] scatters
+/// them into each slot's neighbours.
+struct Bands<'a> {
+    pair_slots: &'a [Vec<PairSlots>],
+    layers: &'a [usize],
+    /// Where each slot's neighbours begin.
+    first: &'a [u32],
+}
+
+impl Bands<'_> {
+    /// Writes the neighbours of the slots of layers `run.start..run.end`,
+    /// which band `z` shares with band `z - 1` only (its pairs join layers
+    /// `z` and `z + 1`): `cursor` and `neighbours` hold those slots' own
+    /// parts, so that runs of bands are written on their own threads, and
+    /// each slot's neighbours come in band order, as on one thread.
+    fn scatter(&self, run: std::ops::Range<usize>, cursor: &mut [u32], neighbours: &mut [u32]) {
+        let (lo, hi) = (self.layers[run.start], self.layers[run.end]);
+        let pairs: usize = self.pair_slots[run.clone()].iter().map(Vec::len).sum();
+        if pairs >= LIST_ALONE && run.len() > 1 {
+            // Split where half the pairs lie before.
+            let mut before = 0;
+            let mid = run.start
+                + 1
+                + self.pair_slots[run.start..run.end - 1]
+                    .iter()
+                    .take_while(|band| {
+                        before += band.len();
+                        2 * before < pairs
+                    })
+                    .count();
+            let at = self.layers[mid];
+            let (cursor_lo, cursor_hi) = cursor.split_at_mut(at - lo);
+            let entries = (self.first[at] - self.first[lo]) as usize;
+            let (neighbours_lo, neighbours_hi) = neighbours.split_at_mut(entries);
+            rayon::join(
+                || self.scatter(run.start..mid, cursor_lo, neighbours_lo),
+                || self.scatter(mid..run.end, cursor_hi, neighbours_hi),
+            );
+            return;
+        }
+        let base = self.first[lo];
+        let mut put = |a: u32, b: u32| {
+            let at = &mut cursor[a as usize - lo];
+            neighbours[(*at - base) as usize] = b;
+            *at += 1;
+        };
+        // A pair's first slot lies in its band's layer, the second in the
+        // same layer or the next.
+        if let Some(shared) = run.start.checked_sub(1) {
+            for &[i, j] in &self.pair_slots[shared] {
+                if j as usize >= lo {
+                    put(j, i);
+                }
+            }
+        }
+        for &[i, j] in self.pair_slots[run].iter().flatten() {
+            put(i, j);
+            if (j as usize) < hi {
+                put(j, i);
+            }
+        }
     }
 }
 
@@ -214,9 +326,7 @@ impl World {
     pub(super) fn resolve_impacts(&mut self, dt: f64, gravity: DVec3) {
         let mut impacts = std::mem::take(&mut self.scratch.impacts);
         impacts.clear(self.balls.len());
-        let threshold = self.config.solver.bounce_threshold.max(RESTING_SPEED);
-        let due = |p: &Pair| closes_fast(p, threshold, dt);
-        self.contacts.copy_pairs_where(due, &mut impacts.due);
+        let threshold = impact_threshold(&self.config);
         let setting = Setting {
             dt,
             gravity,
@@ -225,12 +335,16 @@ impl World {
             wall_restitution: self.config.room.restitution,
             wall_friction: self.config.room.friction,
         };
-        if !impacts.due.is_empty() {
-            impacts.list_neighbours(&self.contacts.pair_slots, &self.scratch.ball_partners);
+        let any_due = impacts.any_due();
+        if any_due {
+            impacts.list_neighbours(
+                &self.contacts.pair_slots,
+                &self.contacts.layers,
+                &self.scratch.ball_partners,
+            );
         }
-        for k in 0..impacts.due.len() {
-            let Pair { i, j, .. } = impacts.due[k];
-            self.queue_pair(&mut impacts, &setting, i as usize, j as usize, 0.0);
+        if any_due {
+            self.queue_due_pairs(&mut impacts, &setting);
         }
         // Gravity may speed a ball towards a wall by at most this within the step.
         let fall = self.config.gravity * dt;
@@ -266,7 +380,11 @@ impl World {
                 continue;
             }
             if !impacts.listed {
-                impacts.list_neighbours(&self.contacts.pair_slots, &self.scratch.ball_partners);
+                impacts.list_neighbours(
+                    &self.contacts.pair_slots,
+                    &self.contacts.layers,
+                    &self.scratch.ball_partners,
+                );
             }
             for k in [Some(i), j].into_iter().flatten() {
                 if impacts.met[k] < IMPACTS_PER_BALL {
@@ -274,8 +392,9 @@ impl World {
                 }
             }
         }
-        if !impacts.touched.is_empty() || !impacts.due.is_empty() {
-            self.hand_impacts_to_contacts(&impacts, &setting);
+        impacts.pairs_changed = !impacts.touched.is_empty() || any_due;
+        if !impacts.touched.is_empty() {
+            self.hand_walls_to_contacts(&impacts, &setting);
         }
         self.scratch.impacts = impacts;
     }
@@ -289,8 +408,9 @@ impl World {
     /// Whether slot `i` rests, or is about to rest, on another ball: one of
     /// its contacts lies below it (within 60 degrees of straight down),
     /// within one of its radii, and neither closes on it nor leaves it faster
-    /// than an impact bounces (so in a scene where every impact bounces,
-    /// nothing rests on anything). Such a ball is part of a heap, and a blow
+    /// than an impact bounces as the stage began (so in a scene where every
+    /// impact bounces, nothing rests on anything; and the answer does not
+    /// hang on when it is first asked, nor on which impacts came before). Such a ball is part of a heap, and a blow
     /// on it is the heap's: the contact solver takes it with the heap as one
     /// body. Followed ball by ball, a blow into a heap (or a heap's landing)
     /// sets balls bouncing against neighbours the solver then cannot hold
@@ -303,50 +423,112 @@ impl World {
             _ => {}
         }
         if !impacts.listed {
-            impacts.list_neighbours(&self.contacts.pair_slots, &self.scratch.ball_partners);
+            impacts.list_neighbours(
+                &self.contacts.pair_slots,
+                &self.contacts.layers,
+                &self.scratch.ball_partners,
+            );
         }
-
-        let balls = &self.balls;
-        let (first, last) = (impacts.first[i] as usize, impacts.first[i + 1] as usize);
-        let stacked = self.config.gravity > 0.0
-            && impacts.neighbours[first..last].iter().any(|&j| {
-                let d = balls.position[i] - balls.position[j as usize];
-                let close = d.length() <= 2.0 * balls.radius[i] + balls.radius[j as usize];
-                let settling = (balls.velocity[i] - balls.velocity[j as usize])
-                    .dot(d)
-                    .abs()
-                    <= self.config.solver.bounce_threshold * d.length();
-                close && d.y >= 0.5 * d.length() && settling
-            });
+        let stacked = self.rests_on_another(impacts, i);
         impacts.stacked[i] = if stacked { 2 } else { 1 };
         impacts.asked.push(i as u32);
         stacked
     }
 
+    /// [`World::stacked`], worked out afresh, once the neighbours are listed.
+    fn rests_on_another(&self, impacts: &Impacts, i: usize) -> bool {
+        let balls = &self.balls;
+        let (first, last) = (impacts.first[i] as usize, impacts.first[i + 1] as usize);
+        let velocity = |k: usize| impacts.velocity_at_start(k, balls);
+        self.config.gravity > 0.0
+            && impacts.neighbours[first..last].iter().any(|&j| {
+                let j = j as usize;
+                let d = balls.position[i] - balls.position[j];
+                let close = d.length() <= 2.0 * balls.radius[i] + balls.radius[j];
+                let settling = (velocity(i) - velocity(j)).dot(d).abs()
+                    <= self.config.solver.bounce_threshold * d.length();
+                close && d.y >= 0.5 * d.length() && settling
+            })
+    }
+
     /// Queues the impact of slots `i` and `j` if they touch, closing fast
-    /// enough to bounce, between time `from` and the step's end.
+    /// enough to bounce, between time `from` and the step's end, and
+    /// neither lies in a heap.
     fn queue_pair(&self, impacts: &mut Impacts, setting: &Setting, i: usize, j: usize, from: f64) {
+        let partners = &self.scratch.ball_partners;
+        if packed(partners, i) || packed(partners, j) {
+            return;
+        }
+        let Some(c) = self.pair_impact(impacts, setting, i, j, from) else {
+            return;
+        };
+        if !self.stacked(impacts, i) && !self.stacked(impacts, j) {
+            impacts.queue.push(c);
+        }
+    }
+
+    /// The impact of slots `i` and `j`, if they touch, closing fast enough
+    /// to bounce, between time `from` and the step's end.
+    fn pair_impact(
+        &self,
+        impacts: &Impacts,
+        setting: &Setting,
+        i: usize,
+        j: usize,
+        from: f64,
+    ) -> Option<Candidate> {
         let (a, b) = (i.min(j), i.max(j));
         let d = self.path_at(impacts, a, from) - self.path_at(impacts, b, from);
         let v = self.balls.velocity[a] - self.balls.velocity[b];
         let reach = self.balls.radius[a] + self.balls.radius[b];
-        let partners = &self.scratch.ball_partners;
-        let mut in_heap = |k| packed(partners, k) || self.stacked(impacts, k);
-        if in_heap(a) || in_heap(b) {
-            return;
-        }
-        let Some(t) = first_touch(d, v, reach, setting.dt - from) else {
-            return;
-        };
+        let t = first_touch(d, v, reach, setting.dt - from)?;
         let n = (d + v * t).normalize_or_zero();
-        if v.dot(n) < -setting.threshold {
-            impacts.queue.push(Candidate {
-                time: from + t,
-                ball: a as u32,
-                struck: Struck::Ball(b as u32),
-                versions: [impacts.met[a], impacts.met[b]],
-            });
+        (v.dot(n) < -setting.threshold).then(|| Candidate {
+            time: from + t,
+            ball: a as u32,
+            struck: Struck::Ball(b as u32),
+            versions: [impacts.met[a], impacts.met[b]],
+        })
+    }
+
+    /// Queues the impacts of the due pairs, found band by band on all
+    /// threads (before any impact, each is the same wherever it is found),
+    /// then made one queue.
+    fn queue_due_pairs(&self, impacts: &mut Impacts, setting: &Setting) {
+        let mut found = std::mem::take(&mut impacts.found);
+        found.resize_with(impacts.due.len(), Vec::new);
+        let partners = &self.scratch.ball_partners;
+        let impacts_now = &*impacts;
+        let stacked = |k| self.rests_on_another(impacts_now, k);
+        let find = |(band, found): (&Vec<PairSlots>, &mut Vec<Candidate>)| {
+            found.clear();
+            for &[i, j] in band {
+                let (i, j) = (i as usize, j as usize);
+                if packed(partners, i) || packed(partners, j) {
+                    continue;
+                }
+                if let Some(c) = self.pair_impact(impacts_now, setting, i, j, 0.0)
+                    && !stacked(i)
+                    && !stacked(j)
+                {
+                    found.push(c);
+                }
+            }
+        };
+        let due = impacts.due.iter().map(Vec::len).sum::<usize>();
+        if due >= PARALLEL_PAIRS {
+            impacts.due.par_iter().zip(&mut found).for_each(find);
+        } else {
+            impacts.due.iter().zip(&mut found).for_each(find);
         }
+        // Heaped all at once: no one's place is sought more than once.
+        let mut queue = std::mem::take(&mut impacts.queue).into_vec();
+        queue.clear();
+        for band in &found {
+            queue.extend_from_slice(band);
+        }
+        impacts.queue = BinaryHeap::from(queue);
+        impacts.found = found;
     }
 
     /// Queues the impact of slot `i` on wall `s` if it reaches it between
@@ -432,6 +614,8 @@ impl World {
         // v1' = ((m1 - m2) v1 + 2 m2 v2) / (m1 + m2) along n, scaled by e (P2).
         let impulse = (1.0 + setting.ball_restitution) * closing / (wi + wj);
         let (dvi, dvj) = (n * (impulse * wi), n * (-impulse * wj));
+        impacts.keep_start_velocity(i, balls.velocity[i]);
+        impacts.keep_start_velocity(j, balls.velocity[j]);
         balls.velocity[i] += dvi;
         balls.velocity[j] += dvj;
         impacts.shift[i] -= dvi * t;
@@ -480,6 +664,7 @@ impl World {
             setting.wall_friction,
         );
         let dv = after - u;
+        impacts.keep_start_velocity(i, balls.velocity[i]);
         balls.velocity[i] += dv;
         balls.spin[i] = spin;
         impacts.shift[i] -= dv * t;
@@ -500,39 +685,12 @@ impl World {
         true
     }
 
-    /// Hands the impacts' outcome to the contact solver: the pairs and
-    /// walls of the balls that met one start from where their paths now
-    /// begin, at their new approach speeds (so that none is taken for an
-    /// impact again).
-    fn hand_impacts_to_contacts(&mut self, impacts: &Impacts, setting: &Setting) {
-        let balls = &self.balls;
-        let partners = &self.scratch.ball_partners;
-        let threshold = setting.threshold;
-        let dt = setting.dt;
-        let due = |p: &Pair| closes_fast(p, threshold, dt);
-        self.contacts.update_pairs(|p| {
-            let (i, j) = (p.i as usize, p.j as usize);
-            let free = !packed(partners, i) && !packed(partners, j);
-            if !(impacts.met(i) || impacts.met(j) || free && due(p)) {
-                return;
-            }
-            // Both move in straight lines from the later of their last
-            // impacts: the contact's normal is found from there on, and its
-            // gap is along it from where their paths now start. Free balls
-            // that only pass by are held apart where they come closest.
-            let pass_by = if free { threshold } else { f64::INFINITY };
-            let from = impacts.last[i].max(impacts.last[j]);
-            let v = balls.velocity[i] - balls.velocity[j];
-            let start =
-                (balls.position[i] + impacts.shift[i]) - (balls.position[j] + impacts.shift[j]);
-            let d = start + v * from;
-            let reach = balls.radius[i] + balls.radius[j];
-            if let Some(n) = d.try_normalize() {
-                p.normal = contact_normal(d, v, reach, dt - from, pass_by).map_or(n, |(n, _)| n);
-                p.gap = start.dot(p.normal) - reach;
-            }
-            p.approach = v.dot(p.normal);
-        });
+    /// Hands the impacts' outcome on the walls to the contact solver: the
+    /// walls of the balls that met an impact start from where their paths
+    /// now begin, at their new approach speeds (so that none is taken for
+    /// an impact again). The pairs get theirs as the predict stage builds
+    /// their rows (see [`World::predict_after_impacts`]).
+    fn hand_walls_to_contacts(&mut self, impacts: &Impacts, setting: &Setting) {
         // A wall's approach is the ball's normal velocity before gravity's
         // half step (see `collect_contacts`).
         let half_kick = 0.5 * setting.dt * setting.gravity;
@@ -541,16 +699,78 @@ impl World {
             if impacts.met(i) {
                 let n = c.normal();
                 c.gap += impacts.shift[i].dot(n);
-                c.approach = (balls.velocity[i] - half_kick).dot(n);
+                c.approach = (self.balls.velocity[i] - half_kick).dot(n);
             }
         }
     }
+
+    /// Step 4, the contact solver's predict stage, each pair handed the
+    /// impacts' outcome as its row is built: in the pass over the pairs the
+    /// stage makes anyway, where a pass of its own would stream them all
+    /// from memory for the few that changed.
+    pub(super) fn predict_after_impacts(&mut self, warm_start: bool) {
+        let impacts = std::mem::take(&mut self.scratch.impacts);
+        let partners = std::mem::take(&mut self.scratch.ball_partners);
+        let threshold = impact_threshold(&self.config);
+        let dt = self.config.solver.dt;
+        let hand = |p: &mut Pair, balls: &Balls| {
+            if impacts.pairs_changed {
+                hand_pair(p, balls, &impacts, &partners, threshold, dt);
+            }
+        };
+        solve_predict(&mut self.step_context(warm_start), &hand);
+        self.scratch.impacts = impacts;
+        self.scratch.ball_partners = partners;
+    }
 }
 
-/// Whether pair `p`'s contact, as found, closes within the step faster
-/// than an impact bounces: an impact due, or balls passing close by.
-fn closes_fast(p: &Pair, threshold: f64, dt: f64) -> bool {
-    p.approach < -threshold && p.gap + p.approach * dt <= 0.0
+/// Hands the impacts' outcome to pair `p`: if either ball met an impact,
+/// or both are free and the pair was due, its contact starts from where
+/// their paths now begin, at their new approach speed (so that it is not
+/// taken for an impact again).
+#[inline(always)]
+fn hand_pair(
+    p: &mut Pair,
+    balls: &Balls,
+    impacts: &Impacts,
+    partners: &[u8],
+    threshold: f64,
+    dt: f64,
+) {
+    let (i, j) = (p.i as usize, p.j as usize);
+    let free = || !packed(partners, i) && !packed(partners, j);
+    let met = impacts.met(i) || impacts.met(j);
+    if !(met || closes_fast(p.gap, p.approach, threshold, dt) && free()) {
+        return;
+    }
+    // Both move in straight lines from the later of their last impacts:
+    // the contact's normal is found from there on, and its gap is along it
+    // from where their paths now start. Free balls that only pass by are
+    // held apart where they come closest.
+    let pass_by = if free() { threshold } else { f64::INFINITY };
+    let from = impacts.last[i].max(impacts.last[j]);
+    let v = balls.velocity[i] - balls.velocity[j];
+    let start = (balls.position[i] + impacts.shift[i]) - (balls.position[j] + impacts.shift[j]);
+    let d = start + v * from;
+    let reach = balls.radius[i] + balls.radius[j];
+    if let Some(n) = d.try_normalize() {
+        p.normal = contact_normal(d, v, reach, dt - from, pass_by).map_or(n, |(n, _)| n);
+        p.gap = start.dot(p.normal) - reach;
+    }
+    p.approach = v.dot(p.normal);
+}
+
+/// The approach speed below which nothing bounces, and the impacts stage
+/// leaves a contact to the contact solver.
+pub(super) fn impact_threshold(config: &WorldConfig) -> f64 {
+    config.solver.bounce_threshold.max(RESTING_SPEED)
+}
+
+/// Whether a pair's contact, as found (`gap` and `approach` along its
+/// normal), closes within the step faster than an impact bounces: an
+/// impact due, or balls passing close by.
+pub(super) fn closes_fast(gap: f64, approach: f64, threshold: f64, dt: f64) -> bool {
+    approach < -threshold && gap + approach * dt <= 0.0
 }
 
 /// Whether slot `i` lies packed in a crowd (see [`PACKED`]).

@@ -10,7 +10,8 @@
 //! 3. resolve the step's impacts one by one in the order they happen, each
 //!    between its two bodies (`impacts`);
 //! 4. solve contacts on those velocities (predict stage, speculative and
-//!    warm-started; see [`crate::contact`], which gets a [`StepContext`]);
+//!    warm-started; see [`crate::contact`], which gets a [`StepContext`]),
+//!    each pair handed the impacts' outcome as its row is built;
 //! 5. move: balls along exact parabolas with exact wall impacts, tumblers by
 //!    integrating their grounded rolling/sliding equations (`flight`);
 //! 6. end the contacts that pushed at rest, bounce what impacts were left
@@ -30,8 +31,7 @@ use crate::broadphase::Grid;
 use crate::config::{Rgb, WorldConfig};
 use crate::contact::WarmStart;
 use crate::contact::{
-    Bodies, Contacts, Crowd, PARALLEL_PAIRS, Pair, StepContext, WallContact, solve_predict,
-    solve_project,
+    Bodies, Contacts, Crowd, PARALLEL_PAIRS, Pair, StepContext, WallContact, solve_project,
 };
 use crate::events::Event;
 use crate::fireball::Fireball;
@@ -554,7 +554,7 @@ impl World {
         });
         self.resolve_impacts(dt, g);
         self.update_contact_inertia();
-        solve_predict(&mut self.step_context(warm_start));
+        self.predict_after_impacts(warm_start);
         self.apply_rolling_resistance();
 
         self.move_balls(dt, g);
