@@ -1,6 +1,7 @@
 //! Each slot's neighbours, the balls it has a contact with this step: the
 //! only balls an impact on it can set moving within the step.
 
+use super::packed;
 use crate::contact::PairSlots;
 
 /// Below this many pairs, a run of bands lists its neighbours on one thread.
@@ -21,7 +22,8 @@ impl Neighbours {
     /// sort: in slot order, whatever the threads found them in. `partners`
     /// holds how many each slot has, counted while the pairs were found;
     /// `layers` the first slot of each grid layer (see
-    /// [`crate::contact::Contacts`]).
+    /// [`crate::contact::Contacts`]). A slot packed in a crowd takes part in
+    /// no impact, and gets none listed (its count may have saturated).
     pub(super) fn list(
         &mut self,
         pair_slots: &[Vec<PairSlots>],
@@ -31,18 +33,14 @@ impl Neighbours {
         let slots = partners.len();
         let first = &mut self.first;
         first.clear();
-        first.resize(slots + 1, 0);
-        if partners.contains(&u8::MAX) {
-            // A count that saturated: count again, in full.
-            for &[i, j] in pair_slots.iter().flatten() {
-                first[i as usize + 1] += 1;
-                first[j as usize + 1] += 1;
+        first.push(0);
+        first.extend((0..slots).map(|k| {
+            if packed(partners, k) {
+                0
+            } else {
+                u32::from(partners[k])
             }
-        } else {
-            for (count, &n) in first[1..].iter_mut().zip(partners) {
-                *count = u32::from(n);
-            }
-        }
+        }));
         for k in 0..slots {
             first[k + 1] += first[k];
         }
@@ -54,11 +52,12 @@ impl Neighbours {
             pair_slots,
             layers,
             first,
+            partners,
         };
         bands.scatter(0..pair_slots.len(), &mut self.cursor, &mut self.neighbours);
     }
 
-    /// The neighbours of slot `i`.
+    /// The neighbours of slot `i` (none listed if it is packed).
     pub(super) fn of(&self, i: usize) -> &[u32] {
         &self.neighbours[self.first[i] as usize..self.first[i + 1] as usize]
     }
@@ -71,6 +70,7 @@ struct Bands<'a> {
     layers: &'a [usize],
     /// Where each slot's neighbours begin.
     first: &'a [u32],
+    partners: &'a [u8],
 }
 
 impl Bands<'_> {
@@ -105,7 +105,11 @@ impl Bands<'_> {
             return;
         }
         let base = self.first[lo];
+        let partners = self.partners;
         let mut put = |a: u32, b: u32| {
+            if packed(partners, a as usize) {
+                return;
+            }
             let at = &mut cursor[a as usize - lo];
             neighbours[(*at - base) as usize] = b;
             *at += 1;
