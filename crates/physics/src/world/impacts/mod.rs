@@ -28,6 +28,7 @@ use crate::balls::{Balls, Tint};
 use crate::ccd::contact_normal;
 use crate::config::WorldConfig;
 use crate::contact::{PARALLEL_PAIRS, Pair, PairSlots, WallContact, solve_predict};
+use crate::events::Event;
 use crate::room::Surface;
 use glam::DVec3;
 use neighbours::Neighbours;
@@ -289,95 +290,35 @@ impl World {
                 border,
                 ..
             } = &mut impacts;
-            let fixed = Fixed {
-                position,
-                radius,
-                mass,
-                inv_mass,
-                partners,
-                neighbours,
-                room: &self.room,
-                setting: &setting,
+            let mut stage = Stage {
+                fixed: Fixed {
+                    position,
+                    radius,
+                    mass,
+                    inv_mass,
+                    partners,
+                    neighbours,
+                    room: &self.room,
+                    setting: &setting,
+                },
+                changing: Changing {
+                    velocity,
+                    spin,
+                    tint,
+                    per_slot,
+                },
+                lists,
+                events: &mut self.events,
             };
-            find_due_impacts(&all(velocity, spin, tint, per_slot), &fixed, due, found);
-            let [first, second] = lists;
+            find_due_impacts(&stage.changing.all(), &stage.fixed, due, found);
             match halving_layer(found) {
-                None => {
-                    heap(&mut first.queue, found.iter().flatten(), |_| true);
-                    let mut run = Run {
-                        fixed: &fixed,
-                        moving: all(velocity, spin, tint, per_slot),
-                        lists: first,
-                        border: None,
-                    };
-                    walls.for_each(|c| run.queue_wall(c.ball as usize, c.surface, 0.0));
-                    run.resolve();
-                }
+                None => stage.in_one_run(found, walls),
                 Some(h) => {
                     let layers = &self.contacts.layers;
                     let line = layers[h];
                     border.mark(neighbours, layers[h - 1]..layers[h + 1], line);
-                    let border = &*border;
-                    let waits = |c: &Candidate| {
-                        let j = match c.struck {
-                            Struck::Ball(j) => j as usize,
-                            Struck::Wall(_) => c.ball as usize,
-                        };
-                        border.holds(c.ball as usize) || border.holds(j)
-                    };
-                    let before = |c: &Candidate| (c.ball as usize) < line;
-                    heap(&mut first.queue, found.iter().flatten(), |c| {
-                        !waits(c) && before(c)
-                    });
-                    heap(&mut second.queue, found.iter().flatten(), |c| {
-                        !waits(c) && !before(c)
-                    });
-                    waiting.clear();
-                    waiting.extend(found.iter().flatten().filter(|c| waits(c)));
-                    let (lower, upper) = all(velocity, spin, tint, per_slot).split_at(line);
-                    let mut runs = [
-                        Run {
-                            fixed: &fixed,
-                            moving: lower,
-                            lists: &mut *first,
-                            border: Some(border),
-                        },
-                        Run {
-                            fixed: &fixed,
-                            moving: upper,
-                            lists: &mut *second,
-                            border: Some(border),
-                        },
-                    ];
-                    for c in walls.clone() {
-                        let i = c.ball as usize;
-                        runs[usize::from(i >= line)].queue_wall(i, c.surface, 0.0);
-                    }
-                    let [lower, upper] = &mut runs;
-                    rayon::join(|| lower.resolve(), || upper.resolve());
-                    // Then the slots by the line, and what they set moving.
-                    self.events.append(&mut first.events);
-                    self.events.append(&mut second.events);
-                    let mut run = Run {
-                        fixed: &fixed,
-                        moving: all(velocity, spin, tint, per_slot),
-                        lists: first,
-                        border: None,
-                    };
-                    heap(&mut run.lists.queue, waiting.iter(), |_| true);
-                    for i in border.slots() {
-                        for &j in neighbours.of(i) {
-                            run.queue_pair(i, j as usize, 0.0);
-                        }
-                    }
-                    walls
-                        .filter(|c| border.holds(c.ball as usize))
-                        .for_each(|c| run.queue_wall(c.ball as usize, c.surface, 0.0));
-                    run.resolve();
+                    stage.in_two_runs(line, border, found, waiting, walls);
                 }
-            }
-            for lists in &mut impacts.lists {
-                self.events.append(&mut lists.events);
             }
         }
         impacts.pairs_changed = impacts.any_met() || any_due;
@@ -426,23 +367,133 @@ impl World {
     }
 }
 
-/// What impacts change, for all slots.
-fn all<'a>(
+/// What impacts change: the balls' motion, and the stage's own record of
+/// each slot.
+struct Changing<'a> {
     velocity: &'a mut [DVec3],
     spin: &'a mut [DVec3],
     tint: &'a mut [Tint],
     per_slot: &'a mut PerSlot,
-) -> Moving<'a> {
-    Moving {
-        first: 0,
-        velocity,
-        spin,
-        tint,
-        shift: &mut per_slot.shift,
-        met: &mut per_slot.met,
-        last: &mut per_slot.last,
-        start_velocity: &mut per_slot.start_velocity,
-        stacked: &mut per_slot.stacked,
+}
+
+impl Changing<'_> {
+    /// All of it, for all slots.
+    fn all(&mut self) -> Moving<'_> {
+        let per_slot = &mut *self.per_slot;
+        Moving {
+            first: 0,
+            velocity: self.velocity,
+            spin: self.spin,
+            tint: self.tint,
+            shift: &mut per_slot.shift,
+            met: &mut per_slot.met,
+            last: &mut per_slot.last,
+            start_velocity: &mut per_slot.start_velocity,
+            stacked: &mut per_slot.stacked,
+        }
+    }
+}
+
+/// The impacts stage at work: what it reads, what it changes, its runs'
+/// lists, and where its events go.
+struct Stage<'a> {
+    fixed: Fixed<'a>,
+    changing: Changing<'a>,
+    lists: &'a mut [Lists; 2],
+    events: &'a mut Vec<Event>,
+}
+
+impl Stage<'_> {
+    /// Resolves the impacts `found` due and those of the balls reaching
+    /// `walls`, and all they lead to, in one run over all slots.
+    fn in_one_run<'w>(
+        &mut self,
+        found: &[Vec<Candidate>],
+        walls: impl Iterator<Item = &'w WallContact>,
+    ) {
+        let [first, _] = &mut *self.lists;
+        heap(&mut first.queue, found.iter().flatten(), |_| true);
+        let mut run = Run {
+            fixed: &self.fixed,
+            moving: self.changing.all(),
+            lists: first,
+            border: None,
+        };
+        walls.for_each(|c| run.queue_wall(c.ball as usize, c.surface, 0.0));
+        run.resolve();
+        self.events.append(&mut first.events);
+    }
+
+    /// Resolves the same in two runs side by side, the slots before `line`
+    /// and those from it on, but for those of `border`; then, in a run over
+    /// all slots, the impacts of the border's slots and all they lead to.
+    /// `waiting` keeps the impacts due that wait for that run.
+    fn in_two_runs<'w>(
+        &mut self,
+        line: usize,
+        border: &Border,
+        found: &[Vec<Candidate>],
+        waiting: &mut Vec<Candidate>,
+        walls: impl Iterator<Item = &'w WallContact> + Clone,
+    ) {
+        let waits = |c: &Candidate| {
+            let j = match c.struck {
+                Struck::Ball(j) => j as usize,
+                Struck::Wall(_) => c.ball as usize,
+            };
+            border.holds(c.ball as usize) || border.holds(j)
+        };
+        let before = |c: &Candidate| (c.ball as usize) < line;
+        let [first, second] = &mut *self.lists;
+        heap(&mut first.queue, found.iter().flatten(), |c| {
+            !waits(c) && before(c)
+        });
+        heap(&mut second.queue, found.iter().flatten(), |c| {
+            !waits(c) && !before(c)
+        });
+        waiting.clear();
+        waiting.extend(found.iter().flatten().filter(|c| waits(c)));
+        let (lower, upper) = self.changing.all().split_at(line);
+        let mut runs = [
+            Run {
+                fixed: &self.fixed,
+                moving: lower,
+                lists: &mut *first,
+                border: Some(border),
+            },
+            Run {
+                fixed: &self.fixed,
+                moving: upper,
+                lists: &mut *second,
+                border: Some(border),
+            },
+        ];
+        for c in walls.clone() {
+            let i = c.ball as usize;
+            runs[usize::from(i >= line)].queue_wall(i, c.surface, 0.0);
+        }
+        let [lower, upper] = &mut runs;
+        rayon::join(|| lower.resolve(), || upper.resolve());
+        self.events.append(&mut first.events);
+        self.events.append(&mut second.events);
+        // Then the slots by the line, and what they set moving.
+        let mut run = Run {
+            fixed: &self.fixed,
+            moving: self.changing.all(),
+            lists: first,
+            border: None,
+        };
+        heap(&mut run.lists.queue, waiting.iter(), |_| true);
+        for i in border.slots() {
+            for &j in self.fixed.neighbours.of(i) {
+                run.queue_pair(i, j as usize, 0.0);
+            }
+        }
+        walls
+            .filter(|c| border.holds(c.ball as usize))
+            .for_each(|c| run.queue_wall(c.ball as usize, c.surface, 0.0));
+        run.resolve();
+        self.events.append(&mut first.events);
     }
 }
 
