@@ -70,6 +70,14 @@ pub struct BallsConfig {
     pub mass: f64,
     /// Coefficient of restitution of a ball-ball collision (P2's damping factor).
     pub restitution: f64,
+    /// Coulomb friction coefficient between two balls, and between a ball
+    /// and a tumbler (see docs/physics.md on which coefficient rules a pair).
+    pub friction: f64,
+    /// Rolling resistance between two balls, and between a ball and a
+    /// tumbler: the resisting torque is this times the normal force times
+    /// the pair's rolling radius (r1 r2 / (r1 + r2)), the room's coefficient
+    /// for a ball on a wall, where the rolling radius is the ball's.
+    pub rolling_resistance: f64,
     /// Initial speeds are drawn uniformly from this range (m/s).
     pub speed_min: f64,
     /// Fastest start of a random ball (m/s).
@@ -79,11 +87,28 @@ pub struct BallsConfig {
     pub start_fill: f64,
     /// Colour of a ball that has not hit anything yet.
     pub color: Rgb,
+    /// Whether the random balls are poured from a spout instead of all
+    /// starting at once.
+    pub pour: PourConfig,
     /// Balls placed by hand, in addition to the `count` random ones (which
     /// start in the space they leave free): a scene of placed balls alone
     /// sets `count` to 0, and a scene may also rain random balls on a
     /// placed arrangement. They are the world's first balls, in this order.
     pub placements: Vec<BallPlacement>,
+}
+
+/// A spout that pours the random balls into the room one after another, as
+/// sand from a funnel: each is let go, at rest, from a random point of the
+/// spout's mouth (a horizontal disc) as soon as that point is clear.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PourConfig {
+    /// Balls let go per second; 0 pours nothing and every random ball
+    /// starts at once, placed at random.
+    pub rate: f64,
+    /// The centre of the spout's mouth (m).
+    pub spout: DVec3,
+    /// The radius of the spout's mouth (m).
+    pub radius: f64,
 }
 
 impl BallsConfig {
@@ -248,10 +273,17 @@ impl Default for WorldConfig {
                 radius: 0.12,
                 mass: 0.25,
                 restitution: 0.85,
+                friction: 0.4,
+                rolling_resistance: 0.02,
                 speed_min: 2.0,
                 speed_max: 6.0,
                 start_fill: 1.0,
                 color: [0.95, 0.95, 0.95],
+                pour: PourConfig {
+                    rate: 0.0,
+                    spout: DVec3::new(0.0, 2.0, 0.0),
+                    radius: 0.25,
+                },
                 placements: Vec::new(),
             },
             tumblers: TumblersConfig {

@@ -71,9 +71,12 @@ impl WorldConfig {
         self.room.rolling_resistance = room.rolling_resistance;
         self.room.colors = room.colors;
         self.balls.restitution = balls.restitution;
+        self.balls.friction = balls.friction;
+        self.balls.rolling_resistance = balls.rolling_resistance;
         self.balls.speed_min = balls.speed_min;
         self.balls.speed_max = balls.speed_max;
         self.balls.start_fill = balls.start_fill;
+        self.balls.pour = balls.pour.clone();
         self.balls.color = balls.color;
         self.tumblers.restitution = tumblers.restitution;
         self.tumblers.floor_friction = tumblers.floor_friction;
