@@ -160,6 +160,11 @@ impl Balls {
         self.spin[i] = DVec3::ZERO;
     }
 
+    /// Sets one ball's angular velocity (rad/s), for scenarios and tests.
+    pub fn set_spin(&mut self, i: usize, spin: DVec3) {
+        self.spin[i] = spin;
+    }
+
     /// Keeps the first `len` balls.
     pub(crate) fn truncate(&mut self, len: usize) {
         self.position.truncate(len);

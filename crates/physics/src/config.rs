@@ -98,7 +98,7 @@ pub struct BallsConfig {
 }
 
 /// A spout that pours the random balls into the room one after another, as
-/// sand from a funnel: each is let go, at rest, from a random point of the
+/// sand from a funnel: each is let go, falling, from a random point of the
 /// spout's mouth (a horizontal disc) as soon as that point is clear.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PourConfig {

@@ -27,6 +27,7 @@ mod fireball;
 mod repose;
 mod rng;
 mod room;
+mod sphere_impact;
 mod threads;
 mod tumbler;
 mod world;

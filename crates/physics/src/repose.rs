@@ -15,7 +15,7 @@ use glam::DVec3;
 /// (fewer than three rings on it, or a surface that does not fall away).
 pub fn angle_of_repose(positions: &[DVec3], radius: f64, axis: [f64; 2]) -> Option<f64> {
     let ring_width = 2.0 * radius;
-    if !(ring_width > 0.0) {
+    if ring_width.is_nan() || ring_width <= 0.0 {
         return None;
     }
     let ring_of = |p: &DVec3| {

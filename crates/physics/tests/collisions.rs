@@ -13,6 +13,8 @@ fn open_space(restitution: f64, n: usize) -> World {
     cfg.gravity = 0.0;
     cfg.room.size = DVec3::splat(40.0);
     cfg.balls.restitution = restitution;
+    // The 1-D formulas of the report: balls that slide on each other.
+    cfg.balls.friction = 0.0;
     with_balls(cfg, n)
 }
 

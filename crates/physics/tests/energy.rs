@@ -86,6 +86,8 @@ fn elastic_weightless_frictionless_scene_keeps_its_energy() {
     cfg.balls.restitution = 1.0;
     cfg.room.restitution = 1.0;
     cfg.room.friction = 0.0;
+    cfg.balls.friction = 0.0;
+    cfg.balls.rolling_resistance = 0.0;
     cfg.room.rolling_resistance = 0.0;
     let mut w = build(cfg, 5);
     let e0 = w.energy().total();

@@ -17,6 +17,8 @@ fn open_space(e: f64, n: usize) -> World {
     cfg.balls.count = n;
     cfg.balls.restitution = e;
     cfg.room.friction = 0.0;
+    cfg.balls.friction = 0.0;
+    cfg.balls.rolling_resistance = 0.0;
     cfg.solver.bounce_threshold = 0.0;
     build(cfg, 1)
 }
@@ -28,6 +30,8 @@ fn frictionless_floor(e: f64, n: usize) -> World {
     cfg.balls.count = n;
     cfg.balls.restitution = e;
     cfg.room.friction = 0.0;
+    cfg.balls.friction = 0.0;
+    cfg.balls.rolling_resistance = 0.0;
     cfg.room.rolling_resistance = 0.0;
     build(cfg, 1)
 }
@@ -207,6 +211,8 @@ fn elastic_room(n: usize, gravity: f64) -> WorldConfig {
     cfg.balls.restitution = 1.0;
     cfg.room.restitution = 1.0;
     cfg.room.friction = 0.0;
+    cfg.balls.friction = 0.0;
+    cfg.balls.rolling_resistance = 0.0;
     cfg.room.rolling_resistance = 0.0;
     cfg.solver.bounce_threshold = 0.0;
     cfg

@@ -22,6 +22,26 @@ where
     S: Send,
     F: Fn(&mut B, &mut [S], usize) + Sync,
 {
+    // A slice of nothing, as long as the slots, for the second quantity.
+    let mut nothing = vec![(); velocity.len()];
+    let solve =
+        |band: &mut B, velocity: &mut [S], _: &mut [()], first: usize| solve(band, velocity, first);
+    sweep_bands_of_two(bands, layers, (velocity, &mut nothing), &solve);
+}
+
+/// As [`sweep_bands`] on two per-slot quantities at once, such as the
+/// balls' velocities and spins: `solve(pair, velocity, spin, first)`.
+pub(super) fn sweep_bands_of_two<B, S, T, F>(
+    bands: &mut [B],
+    layers: &[usize],
+    (velocity, spin): (&mut [S], &mut [T]),
+    solve: &F,
+) where
+    B: Band,
+    S: Send,
+    T: Send,
+    F: Fn(&mut B, &mut [S], &mut [T], usize) + Sync,
+{
     let parallel = bands.iter().map(Band::items).sum::<usize>() >= PARALLEL_PAIRS;
     for parity in 0..2 {
         if parity >= bands.len() {
@@ -29,7 +49,7 @@ where
         }
         let count = (bands.len() - parity).div_ceil(2);
         let first = layers[parity];
-        let window = &mut velocity[first..];
+        let window = (&mut velocity[first..], &mut spin[first..]);
         sweep_alternate(
             &mut bands[parity..],
             &layers[parity..],
@@ -44,17 +64,18 @@ where
 /// Sweeps `count` bands: `bands[0]`, `bands[2]`, ..., whose balls start at
 /// slot `layers[0]` (the first slot of `velocity`), splitting the work in
 /// halves across threads.
-fn sweep_alternate<B, S, F>(
+fn sweep_alternate<B, S, T, F>(
     bands: &mut [B],
     layers: &[usize],
-    velocity: &mut [S],
+    (velocity, spin): (&mut [S], &mut [T]),
     count: usize,
     parallel: bool,
     solve: &F,
 ) where
     B: Band,
     S: Send,
-    F: Fn(&mut B, &mut [S], usize) + Sync,
+    T: Send,
+    F: Fn(&mut B, &mut [S], &mut [T], usize) + Sync,
 {
     if count >= 2 && parallel {
         // Split where the pairs, not the bands, are halved: piles fill some
@@ -70,15 +91,17 @@ fn sweep_alternate<B, S, F>(
         let half = half.max(1);
         let split = 2 * half;
         let (left_bands, right_bands) = bands.split_at_mut(split);
-        let (left_v, right_v) = velocity.split_at_mut(layers[split] - layers[0]);
+        let at = layers[split] - layers[0];
+        let (left_v, right_v) = velocity.split_at_mut(at);
+        let (left_s, right_s) = spin.split_at_mut(at);
         rayon::join(
-            || sweep_alternate(left_bands, layers, left_v, half, parallel, solve),
+            || sweep_alternate(left_bands, layers, (left_v, left_s), half, parallel, solve),
             || {
                 let right_layers = &layers[split..];
                 sweep_alternate(
                     right_bands,
                     right_layers,
-                    right_v,
+                    (right_v, right_s),
                     count - half,
                     parallel,
                     solve,
@@ -88,7 +111,7 @@ fn sweep_alternate<B, S, F>(
         return;
     }
     for k in 0..count {
-        solve(&mut bands[2 * k], velocity, layers[0]);
+        solve(&mut bands[2 * k], velocity, spin, layers[0]);
     }
 }
 

@@ -39,17 +39,20 @@ use rayon::prelude::*;
 
 mod bands;
 mod crowd;
+mod pair_friction;
 pub(crate) mod stages;
 mod wall_rows;
 pub(crate) mod warm;
 
 pub(crate) use bands::PARALLEL_PAIRS;
-use bands::{by_band_with_own_part, in_four_streams, sweep_bands};
+use bands::{by_band_with_own_part, in_four_streams, sweep_bands, sweep_bands_of_two};
 pub(crate) use crowd::Crowd;
+use pair_friction::FrictionRow;
+pub(crate) use pair_friction::{FrictionImpulse, PairMaterial};
 pub(crate) use stages::{StepContext, solve_predict, solve_project};
 use wall_rows::WallRows;
 use warm::WarmPart;
-pub(crate) use warm::WarmStart;
+pub(crate) use warm::{StageFriction, WarmStart};
 
 /// Surfaces closer than this (metres) at the end of a step count as touching.
 const TOUCHING: f64 = 1e-6;
@@ -253,6 +256,24 @@ struct RowBand {
     /// The impulses the predict stage ended with, one per pair of the band,
     /// kept for the recording as the step ends.
     predicted: Vec<f64>,
+    /// Where the pairs have friction, each row's friction and rolling rows
+    /// (see [`pair_friction`]), else none; and what they have accumulated.
+    friction: Vec<FrictionRow>,
+    friction_impulses: Vec<FrictionImpulse>,
+    /// The friction impulses the predict stage ended with, kept as
+    /// `predicted`.
+    friction_predicted: Vec<FrictionImpulse>,
+    /// Both stages' friction impulses per pair, gathered for the recording.
+    friction_recorded: Vec<StageFriction>,
+}
+
+/// How a stage starts a pair's row: the relative normal velocity it drives
+/// the pair to, at least, the normal impulse it starts from, and, if the
+/// stage solves friction, the friction impulses it starts from.
+pub(crate) struct RowStart {
+    pub target: f64,
+    pub impulse: f64,
+    pub friction: Option<FrictionImpulse>,
 }
 
 /// The Gauss-Seidel update of every normal contact: the impulse that drives
@@ -385,22 +406,36 @@ impl Contacts {
     }
 
     /// Fills the rows from the pairs that `row` chooses, band by band and in
-    /// order, with the target and starting impulse it gives them (applied
-    /// by [`Contacts::start_rows`]).
-    fn build_rows<F>(&mut self, inv_mass: &[f64], row: F)
+    /// order, with the start it gives them (applied by
+    /// [`Contacts::start_rows`]); a pair given a friction start gets
+    /// friction rows of `material`.
+    fn build_rows<F>(&mut self, balls: &Balls, material: PairMaterial, row: F)
     where
-        F: Fn(&mut Pair) -> Option<(f64, f64)> + Sync,
+        F: Fn(&mut Pair) -> Option<RowStart> + Sync,
     {
         self.rows.resize_with(self.bands.len(), RowBand::default);
+        let inv_mass = &balls.inv_mass;
         let build = |(band, rows): (&mut Vec<Pair>, &mut RowBand)| {
             rows.rows.clear();
             rows.impulses.clear();
+            rows.friction.clear();
+            rows.friction_impulses.clear();
             for p in band {
-                if let Some((target, impulse)) = row(p) {
-                    rows.rows.push(PairRow::new(p, inv_mass, target));
-                    rows.impulses.push(impulse);
+                let Some(start) = row(p) else {
+                    continue;
+                };
+                let pair_row = PairRow::new(p, inv_mass, start.target);
+                if let Some(kept) = start.friction {
+                    let (i, j) = (p.i as usize, p.j as usize);
+                    let friction = FrictionRow::new(i, j, balls, material);
+                    let held = FrictionImpulse::starting(kept, p.normal, start.impulse, &friction);
+                    rows.friction.push(friction);
+                    rows.friction_impulses.push(held);
                 }
+                rows.rows.push(pair_row);
+                rows.impulses.push(start.impulse);
             }
+            debug_assert!(rows.friction.is_empty() || rows.friction.len() == rows.rows.len());
         };
         if self.pair_count() >= PARALLEL_PAIRS {
             self.bands
@@ -412,9 +447,29 @@ impl Contacts {
         }
     }
 
+    /// Whether any band's rows have friction rows.
+    fn rows_have_friction(&self) -> bool {
+        self.rows.iter().any(|band| !band.friction.is_empty())
+    }
+
     /// Applies the rows' starting impulses to the balls.
     fn start_rows(&mut self, balls: &mut Balls) {
         let inv_mass = &balls.inv_mass;
+        if self.rows_have_friction() {
+            let start = |band: &mut RowBand, velocity: &mut [DVec3], spin: &mut [DVec3], first| {
+                let friction = band.friction.iter().zip(&band.friction_impulses);
+                for ((r, &impulse), (f, held)) in band.rows.iter().zip(&band.impulses).zip(friction)
+                {
+                    if impulse > 0.0 {
+                        r.push(velocity, first, inv_mass, impulse);
+                        f.push(r, held, (&mut *velocity, &mut *spin), first, inv_mass);
+                    }
+                }
+            };
+            let slots = (&mut balls.velocity[..], &mut balls.spin[..]);
+            sweep_bands_of_two(&mut self.rows, &self.layers, slots, &start);
+            return;
+        }
         let start = |band: &mut RowBand, velocity: &mut [DVec3], first: usize| {
             for (r, &impulse) in band.rows.iter().zip(&band.impulses) {
                 if impulse > 0.0 {
@@ -428,6 +483,33 @@ impl Contacts {
     /// One Gauss-Seidel sweep over the rows (see [`sweep_bands`]).
     fn sweep_rows(&mut self, balls: &mut Balls) {
         let inv_mass = &balls.inv_mass;
+        if self.rows_have_friction() {
+            let solve = |band: &mut RowBand, velocity: &mut [DVec3], spin: &mut [DVec3], first| {
+                let RowBand {
+                    rows,
+                    impulses,
+                    friction,
+                    friction_impulses,
+                    ..
+                } = band;
+                in_four_streams(rows.len(), |k| {
+                    let r = &rows[k];
+                    r.solve(&mut impulses[k], velocity, first, inv_mass);
+                    let slots = (&mut *velocity, &mut *spin);
+                    friction[k].solve(
+                        r,
+                        impulses[k],
+                        &mut friction_impulses[k],
+                        slots,
+                        first,
+                        inv_mass,
+                    );
+                });
+            };
+            let slots = (&mut balls.velocity[..], &mut balls.spin[..]);
+            sweep_bands_of_two(&mut self.rows, &self.layers, slots, &solve);
+            return;
+        }
         let solve = |band: &mut RowBand, velocity: &mut [DVec3], first: usize| {
             let (rows, impulses) = (&band.rows, &mut band.impulses[..]);
             // Inlined by force: left to the compiler, a change elsewhere in
@@ -454,6 +536,7 @@ impl Contacts {
                 keep(p, impulse);
             }
             std::mem::swap(&mut rows.predicted, &mut rows.impulses);
+            std::mem::swap(&mut rows.friction_predicted, &mut rows.friction_impulses);
         };
         if self.pair_count() >= PARALLEL_PAIRS {
             self.bands.par_iter_mut().zip(&mut self.rows).for_each(hand);
@@ -469,6 +552,29 @@ impl Contacts {
     /// the rows, which only the pairs that pushed have.
     fn record_row_impulses(&mut self, record: (&mut WarmStart, &[u32])) {
         let (warm, ids) = record;
+        let friction = self
+            .rows
+            .iter()
+            .any(|band| !band.friction_predicted.is_empty());
+        if friction {
+            // The project stage's, which only the pairs that pushed have.
+            for (band, rows) in self.bands.iter().zip(&mut self.rows) {
+                let mut project = rows.friction_impulses.iter();
+                let both = band
+                    .iter()
+                    .zip(&rows.friction_predicted)
+                    .map(|(p, &predicted)| {
+                        let project = if p.pushed {
+                            project.next().copied()
+                        } else {
+                            None
+                        };
+                        [predicted, project.unwrap_or_default()]
+                    });
+                rows.friction_recorded.clear();
+                rows.friction_recorded.extend(both);
+            }
+        }
         let rows = &self.rows;
         let hand = |z: usize, band: &mut Vec<Pair>, part: &mut WarmPart| {
             let mut project = rows[z].impulses.iter();
@@ -476,10 +582,10 @@ impl Contacts {
                 .iter()
                 .zip(&rows[z].predicted)
                 .map(move |(p, &predicted)| [predicted, next_impulse(p.pushed, &mut project)]);
-            part.record_pairs(band, impulses, ids);
+            part.record_pairs(band, impulses, &rows[z].friction_recorded, ids);
         };
         let parallel = self.pair_count() >= PARALLEL_PAIRS;
-        let part = warm.recorder();
+        let part = warm.recorder(friction);
         by_band_with_own_part(&mut self.bands, 0, &self.layers, part, parallel, &hand);
     }
 }

@@ -1,10 +1,12 @@
 //! The solver's two stages per step, predict and project (see the
 //! module above for what each does).
 
-use super::warm::{Held, WarmStart};
+use super::warm::{Held, StageFriction, WarmStart};
 use crate::balls::Balls;
 
-use super::{Bodies, Contact, Contacts, Crowd, Pair, TOUCHING};
+use super::{
+    Bodies, Contact, Contacts, Crowd, FrictionImpulse, Pair, PairMaterial, RowStart, TOUCHING,
+};
 
 /// One step as the solver stages see it (after Box2D's step context): the
 /// step's settings, the bodies and contacts they work on, last step's
@@ -16,6 +18,8 @@ pub(crate) struct StepContext<'a> {
     /// Below this approach speed (m/s) an impact rests instead of bouncing.
     pub bounce_threshold: f64,
     pub ball_restitution: f64,
+    /// Friction and rolling resistance between two balls.
+    pub ball_material: PairMaterial,
     pub bodies: Bodies<'a>,
     pub contacts: &'a mut Contacts,
     pub crowd: &'a mut Crowd,
@@ -47,6 +51,7 @@ pub(crate) fn solve_predict(step: &mut StepContext, hand: &(dyn Fn(&mut Pair, &B
         dt,
         iterations,
         bounce_threshold,
+        ball_material,
         ref mut bodies,
         ref mut contacts,
         ref mut crowd,
@@ -63,13 +68,19 @@ pub(crate) fn solve_predict(step: &mut StepContext, hand: &(dyn Fn(&mut Pair, &B
     // project stage's start too. The rows are built before the crowd reads
     // the pairs, each pair handed its impacts' outcome first, and they
     // start once the other contacts are ready.
+    // Friction between balls acts here, as the walls' does.
     let balls = &*bodies.balls;
-    contacts.build_rows(&balls.inv_mass, |p| {
+    let friction = ball_material.any();
+    contacts.build_rows(balls, ball_material, |p| {
         hand(p, balls);
         let target = if p.gap > 0.0 { -p.gap / dt } else { 0.0 };
-        let held = warm_pair(warm, p);
+        let (held, kept_friction) = warm_pair(warm, p, friction);
         p.project_start = held[Stage::Project as usize];
-        Some((target, share(warm, held[Stage::Predict as usize])))
+        Some(RowStart {
+            target,
+            impulse: share(warm, held[Stage::Predict as usize]),
+            friction: friction.then_some(kept_friction[Stage::Predict as usize]),
+        })
     });
     // Only a tumbler's contacts may bounce here, so only they ask the crowd.
     let may_bounce = !contacts.tumbler_contacts.is_empty();
@@ -157,11 +168,22 @@ impl Stage {
     }
 }
 
-/// Last step's impulses of pair `p` as kept, if there is a warm start.
-fn warm_pair(warm: Option<(&WarmStart, &[u32])>, p: &Pair) -> Held {
-    warm.map_or(Held::default(), |(warm, ids)| {
-        warm.pair(ids[p.i as usize], ids[p.j as usize])
-    })
+/// Last step's impulses of pair `p` as kept, if there is a warm start,
+/// and with `friction` its friction impulses as a start.
+fn warm_pair(
+    warm: Option<(&WarmStart, &[u32])>,
+    p: &Pair,
+    friction: bool,
+) -> (Held, StageFriction) {
+    let Some((warm, ids)) = warm else {
+        return (Held::default(), StageFriction::default());
+    };
+    let (a, b) = (ids[p.i as usize], ids[p.j as usize]);
+    if friction {
+        warm.pair_with_friction(a, b)
+    } else {
+        (warm.pair(a, b), StageFriction::default())
+    }
 }
 
 /// The impulse to start from, given one kept (0 without a warm start).
@@ -205,6 +227,7 @@ pub(crate) fn solve_project(step: &mut StepContext) {
         iterations,
         bounce_threshold,
         ball_restitution,
+        ball_material,
         ref mut bodies,
         ref mut contacts,
         ref mut crowd,
@@ -241,16 +264,30 @@ pub(crate) fn solve_project(step: &mut StepContext) {
     // Only the pairs that pushed take part.
     // A bouncing pair starts cold: its impulse is of this impact alone.
     let crowd = &*crowd;
-    contacts.build_rows(&bodies.balls.inv_mass, |p| {
+    // Friction holds here too, warm started as the normal rows: a pile
+    // that friction holds would otherwise end the step pressed sideways by
+    // its normal rows alone.
+    let friction = ball_material.any();
+    contacts.build_rows(bodies.balls, ball_material, |p| {
         p.pushed.then(|| {
             let bounce = p.approach < -bounce_threshold
                 && !hit_wall[p.i as usize]
                 && !hit_wall[p.j as usize]
                 && crowd.lone_pair(p);
-            if bounce {
+            let (target, impulse) = if bounce {
                 (-ball_restitution * p.approach, 0.0)
             } else {
                 (0.0, share(warm, p.project_start))
+            };
+            let kept_friction = if friction && !bounce {
+                warm_pair(warm, p, true).1[Stage::Project as usize]
+            } else {
+                FrictionImpulse::default()
+            };
+            RowStart {
+                target,
+                impulse,
+                friction: friction.then_some(kept_friction),
             }
         })
     });
@@ -258,16 +295,22 @@ pub(crate) fn solve_project(step: &mut StepContext) {
     if let Some((warm, ids)) = warm {
         warm_start_walls(bodies.balls, contacts, warm, ids, Stage::Project);
     }
-    // Friction acted in the predict stage; here contacts only end bouncing
-    // or at rest.
+    // Contacts end bouncing or at rest. Where balls hold one another by
+    // friction, the floor's friction holds them here too: else a heap's
+    // weight, spread by the normal rows, would slide its foot outwards.
     let restitution = bodies.wall_restitution;
+    let wall_friction = if ball_material.any() {
+        bodies.wall_friction
+    } else {
+        0.0
+    };
     contacts.start_wall_rows(bodies.balls, |c| {
         let target = if c.bounce {
             -restitution * c.approach
         } else {
             0.0
         };
-        (c.pushed > 0.0).then_some((target, 0.0))
+        (c.pushed > 0.0).then_some((target, wall_friction))
     });
     for _ in 0..iterations {
         contacts.sweep_wall_rows(bodies.balls);

@@ -14,10 +14,11 @@
 //! add energy; [`crate::World::step`] takes such excess back out of the
 //! step's motion.
 
-use super::Pair;
 #[cfg(doc)]
 use super::stages::Stage;
+use super::{FrictionImpulse, Pair};
 use crate::room::Surface;
+use glam::Vec3;
 
 /// Last step's normal impulses of ball pairs and ball-wall contacts, of
 /// both solver stages.
@@ -35,6 +36,10 @@ pub(crate) struct WarmStart {
     kept: Vec<Kept>,
     /// Per band of pairs, room for each of its pairs (see [`WarmPart`]).
     partners: Vec<Partner>,
+    /// Beside `partners`, each pair's friction impulses in each stage,
+    /// where the step that recorded them solved friction between balls
+    /// (else empty).
+    friction: Vec<[HeldFriction; 2]>,
     /// In slot order.
     walls: Vec<WallImpulse>,
     /// The share of each impulse that a lookup gives (see [`WarmStart::weaken`]).
@@ -69,6 +74,9 @@ pub(crate) type Held = [f32; 2];
 /// A contact's impulses in each solver stage, indexed by [`Stage`].
 pub(crate) type StageImpulses = [f64; 2];
 
+/// A pair's friction impulses in each solver stage, indexed by [`Stage`].
+pub(crate) type StageFriction = [FrictionImpulse; 2];
+
 /// Whether a contact pushed in either stage, and so is worth keeping.
 fn pushed(impulses: StageImpulses) -> bool {
     impulses.iter().any(|&f| f > 0.0)
@@ -76,6 +84,38 @@ fn pushed(impulses: StageImpulses) -> bool {
 
 fn held(impulses: StageImpulses) -> Held {
     impulses.map(|f| f as f32)
+}
+
+/// A pair's friction impulses as kept (see [`Held`]), as they act on the
+/// ball of the lower number: a pair's slots may come in either order.
+#[derive(Clone, Copy, Debug, Default)]
+struct HeldFriction {
+    tangent: Vec3,
+    rolling: Vec3,
+}
+
+impl HeldFriction {
+    fn of(f: &FrictionImpulse) -> HeldFriction {
+        HeldFriction {
+            tangent: f.tangent.as_vec3(),
+            rolling: f.rolling.as_vec3(),
+        }
+    }
+
+    fn share(&self, share: f64) -> FrictionImpulse {
+        FrictionImpulse {
+            tangent: self.tangent.as_dvec3() * share,
+            rolling: self.rolling.as_dvec3() * share,
+        }
+    }
+
+    /// As it acts on the other ball.
+    fn reversed(self) -> HeldFriction {
+        HeldFriction {
+            tangent: -self.tangent,
+            rolling: -self.rolling,
+        }
+    }
 }
 
 /// A ball of a later slot that a slot's ball pushed (by number), and how hard.
@@ -112,18 +152,26 @@ impl WarmStart {
         if self.partners.len() < pairs {
             self.partners.resize(pairs, Partner::default());
         }
+        self.friction.clear();
         self.walls.clear();
         self.strength = 1.0;
     }
 
     /// The whole recording, to be split between bands of pairs (see
     /// [`WarmPart::split`]).
-    pub fn recorder(&mut self) -> WarmPart<'_> {
+    ///
+    /// With `friction`, the pairs' friction impulses are kept too.
+    pub fn recorder(&mut self, friction: bool) -> WarmPart<'_> {
+        if friction {
+            self.friction
+                .resize(self.partners.len(), Default::default());
+        }
         WarmPart {
             first_slot: 0,
             kept: &mut self.kept,
             first_pair: 0,
             partners: &mut self.partners,
+            friction: &mut self.friction,
         }
     }
 
@@ -165,13 +213,32 @@ impl WarmStart {
     /// Last step's impulses between balls number `a` and `b` (0 if none),
     /// as kept: [`WarmStart::share`] tells what of each to start from.
     pub fn pair(&self, a: u32, b: u32) -> Held {
-        let (Some(sa), Some(sb)) = (self.slot(a), self.slot(b)) else {
-            return Held::default();
-        };
+        self.find_pair(a, b)
+            .map_or(Held::default(), |k| self.partners[k].impulses)
+    }
+
+    /// As [`WarmStart::pair`], with the pair's friction impulses on ball
+    /// `a`, as a start (their share; zero where none were kept).
+    pub fn pair_with_friction(&self, a: u32, b: u32) -> (Held, StageFriction) {
+        match self.find_pair(a, b) {
+            Some(k) => {
+                let on_a = |f: HeldFriction| if a < b { f } else { f.reversed() };
+                let share = |held: &[HeldFriction; 2]| held.map(|f| on_a(f).share(self.strength));
+                let friction = self.friction.get(k).map(share);
+                (self.partners[k].impulses, friction.unwrap_or_default())
+            }
+            None => (Held::default(), StageFriction::default()),
+        }
+    }
+
+    /// Where the impulses between balls number `a` and `b` lie in `partners`.
+    fn find_pair(&self, a: u32, b: u32) -> Option<usize> {
+        let (sa, sb) = (self.slot(a)?, self.slot(b)?);
         let (owner, partner) = if sa < sb { (sa, b) } else { (sb, a) };
-        let mut kept = self.partners[self.kept[owner].partner_range()].iter();
-        kept.find(|p| p.ball == partner)
-            .map_or(Held::default(), |p| p.impulses)
+        let range = self.kept[owner].partner_range();
+        let first = range.start;
+        let mut kept = self.partners[range].iter();
+        kept.position(|p| p.ball == partner).map(|k| first + k)
     }
 
     /// Last step's impulses between ball number `ball` and surface `s`, as
@@ -200,6 +267,8 @@ pub(crate) struct WarmPart<'a> {
     kept: &'a mut [Kept],
     first_pair: usize,
     partners: &'a mut [Partner],
+    /// Beside `partners`, or empty where friction is not kept.
+    friction: &'a mut [[HeldFriction; 2]],
 }
 
 impl<'a> WarmPart<'a> {
@@ -213,27 +282,37 @@ impl<'a> WarmPart<'a> {
     pub fn split(self, slot: usize, pair: usize) -> (WarmPart<'a>, WarmPart<'a>) {
         let (kept, later_kept) = self.kept.split_at_mut(slot - self.first_slot);
         let (partners, later_partners) = self.partners.split_at_mut(pair - self.first_pair);
+        let at = (pair - self.first_pair).min(self.friction.len());
+        let (friction, later_friction) = self.friction.split_at_mut(at);
         (
             WarmPart {
                 first_slot: self.first_slot,
                 kept,
                 first_pair: self.first_pair,
                 partners,
+                friction,
             },
             WarmPart {
                 first_slot: slot,
                 kept: later_kept,
                 first_pair: pair,
                 partners: later_partners,
+                friction: later_friction,
             },
         )
     }
 
     /// Records the pairs of `band` (slots of this part, `ids` each slot's
     /// ball number) that pushed, `impulses` giving each pair's impulses in
-    /// turn, into room for the band's pairs.
-    pub fn record_pairs<I>(&mut self, band: &[Pair], impulses: I, ids: &[u32])
-    where
+    /// turn, into room for the band's pairs; with them, where this part
+    /// keeps friction, each pair's `friction` (one per pair, or none).
+    pub fn record_pairs<I>(
+        &mut self,
+        band: &[Pair],
+        impulses: I,
+        friction: &[StageFriction],
+        ids: &[u32],
+    ) where
         I: Iterator<Item = StageImpulses> + Clone,
     {
         let first = self.first_slot;
@@ -241,9 +320,10 @@ impl<'a> WarmPart<'a> {
         let kept_pairs = || {
             band.iter()
                 .zip(impulses.clone())
-                .filter(|(_, f)| pushed(*f))
+                .enumerate()
+                .filter(|(_, (_, f))| pushed(*f))
         };
-        for (p, _) in kept_pairs() {
+        for (_, (p, _)) in kept_pairs() {
             self.kept[owner(p).0 - first].pairs += 1;
         }
         // Each slot's room follows the last one's, then fills from its start.
@@ -253,13 +333,23 @@ impl<'a> WarmPart<'a> {
             next += kept.pairs;
             kept.pairs = 0;
         }
-        for (p, impulses) in kept_pairs() {
+        let keeps_friction = !self.friction.is_empty() && !friction.is_empty();
+        for (k, (p, impulses)) in kept_pairs() {
             let (slot, partner) = owner(p);
             let kept = &mut self.kept[slot - first];
-            self.partners[(kept.first + kept.pairs) as usize - self.first_pair] = Partner {
+            let room = (kept.first + kept.pairs) as usize - self.first_pair;
+            self.partners[room] = Partner {
                 ball: partner,
                 impulses: held(impulses),
             };
+            if keeps_friction {
+                let on_lower = ids[p.i as usize] < ids[p.j as usize];
+                let held = |f: FrictionImpulse| {
+                    let held = HeldFriction::of(&f);
+                    if on_lower { held } else { held.reversed() }
+                };
+                self.friction[room] = friction[k].map(held);
+            }
             kept.pairs += 1;
         }
     }
@@ -305,7 +395,7 @@ mod tests {
             self.begin(&slot_of, ids.len(), pairs.len());
             let band = to_pairs(pairs);
             let impulses = pairs.iter().map(|p| both(p.2));
-            self.recorder().record_pairs(&band, impulses, ids);
+            self.recorder(false).record_pairs(&band, impulses, &[], ids);
         }
     }
 
@@ -361,7 +451,8 @@ mod tests {
         w.begin(&ids, 3, 2);
         let band = to_pairs(&[(0, 1, 0.0), (1, 2, 0.0)]);
         let impulses = [[1.5, 0.0], [0.0, 0.0]];
-        w.recorder().record_pairs(&band, impulses.into_iter(), &ids);
+        w.recorder(false)
+            .record_pairs(&band, impulses.into_iter(), &[], &ids);
         w.record_wall(0, Surface::Floor, [0.0, 0.75]);
         w.record_wall(2, Surface::Floor, [0.0, 0.0]);
         assert_eq!(w.pair_start(0, 1), [1.5, 0.0]);
@@ -388,11 +479,11 @@ mod tests {
         split.begin(&slot_of, 6, all.len());
         let impulses =
             |band: &[(usize, usize, f64)]| band.iter().map(|p| both(p.2)).collect::<Vec<_>>();
-        let (mut first, mut second) = split.recorder().split(2, bands[0].len());
+        let (mut first, mut second) = split.recorder(false).split(2, bands[0].len());
         let later = impulses(&bands[1]);
-        second.record_pairs(&to_pairs(&bands[1]), later.into_iter(), &ids);
+        second.record_pairs(&to_pairs(&bands[1]), later.into_iter(), &[], &ids);
         let earlier = impulses(&bands[0]);
-        first.record_pairs(&to_pairs(&bands[0]), earlier.into_iter(), &ids);
+        first.record_pairs(&to_pairs(&bands[0]), earlier.into_iter(), &[], &ids);
         for a in 0..6 {
             for b in 0..6 {
                 assert_eq!(split.pair(a, b), whole.pair(a, b), "balls {a} and {b}");

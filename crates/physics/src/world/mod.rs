@@ -31,7 +31,8 @@ use crate::broadphase::Grid;
 use crate::config::{Rgb, WorldConfig};
 use crate::contact::WarmStart;
 use crate::contact::{
-    Bodies, Contacts, Crowd, PARALLEL_PAIRS, Pair, StepContext, WallContact, solve_project,
+    Bodies, Contacts, Crowd, PARALLEL_PAIRS, Pair, PairMaterial, StepContext, WallContact,
+    solve_project,
 };
 use crate::events::Event;
 use crate::fireball::Fireball;
@@ -50,6 +51,7 @@ mod hand;
 mod impacts;
 mod live;
 mod overlaps;
+mod pour;
 mod report;
 mod spawn;
 
@@ -163,6 +165,8 @@ pub struct World {
     warm: WarmStart,
     warm_next: WarmStart,
     retakes: u64,
+    /// The random balls still to pour, if the scene pours them.
+    pour: pour::Pour,
     scratch: StepScratch,
 }
 
@@ -264,6 +268,7 @@ impl World {
             warm: Default::default(),
             warm_next: Default::default(),
             retakes: 0,
+            pour: pour::Pour::default(),
             scratch,
             room,
             shape: Arc::new(shape),
@@ -439,6 +444,7 @@ impl World {
     /// [`World::step`], on the current thread.
     fn step_here(&mut self) {
         let dt = self.config.solver.dt;
+        self.pour_due_balls();
         if self.grabbed().is_some() {
             self.advance(dt, true, None);
         } else {
@@ -655,6 +661,10 @@ impl World {
             iterations: solver.iterations,
             bounce_threshold: solver.bounce_threshold,
             ball_restitution: self.config.balls.restitution,
+            ball_material: PairMaterial {
+                friction: self.config.balls.friction,
+                rolling_resistance: self.config.balls.rolling_resistance,
+            },
             bodies,
             contacts: &mut self.contacts,
             crowd: &mut self.scratch.crowd,

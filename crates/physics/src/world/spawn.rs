@@ -65,6 +65,7 @@ impl World {
     /// ball room to move: shuffled lattice sites give random, non-overlapping
     /// positions in time linear in the ball count.
     pub(super) fn spawn_balls(&mut self) -> Result<(), BuildError> {
+        self.pour = super::pour::Pour::default();
         let placed = self.config.balls.placements.len();
         for (k, p) in self.config.balls.placements.iter().enumerate() {
             self.balls.set(k, p.position, p.velocity);
@@ -81,6 +82,11 @@ impl World {
         }
         let n = self.balls.len() - placed;
         if n == 0 {
+            return Ok(());
+        }
+        if self.pours() {
+            self.check_spout()?;
+            self.park_for_pouring(placed);
             return Ok(());
         }
         let r = self.config.balls.radius;

@@ -216,6 +216,7 @@ struct Setting {
     bounce_threshold: f64,
     event_threshold: f64,
     ball_restitution: f64,
+    ball_friction: f64,
     wall_restitution: f64,
     wall_friction: f64,
 }
@@ -253,6 +254,7 @@ impl World {
             bounce_threshold: self.config.solver.bounce_threshold,
             event_threshold: self.config.solver.event_threshold,
             ball_restitution: self.config.balls.restitution,
+            ball_friction: self.config.balls.friction,
             wall_restitution: self.config.room.restitution,
             wall_friction: self.config.room.friction,
         };

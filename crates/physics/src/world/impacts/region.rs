@@ -8,6 +8,7 @@ use crate::balls::{Tint, sphere_inertia};
 use crate::ccd::{bounce_off_wall, first_impact, first_touch};
 use crate::events::{Event, EventKind};
 use crate::room::{Room, Surface};
+use crate::sphere_impact::{Sphere, collide_spheres};
 use glam::DVec3;
 use std::collections::BinaryHeap;
 
@@ -336,20 +337,32 @@ impl Run<'_> {
             return false;
         };
         let (ki, kj) = (i - self.moving.first, j - self.moving.first);
-        let velocity = &mut self.moving.velocity;
-        let closing = -(velocity[ki] - velocity[kj]).dot(n);
-        let (wi, wj) = (fixed.inv_mass[i], fixed.inv_mass[j]);
-        if closing <= setting.threshold || wi + wj <= 0.0 {
+        let sphere = |slot: usize, k: usize| Sphere {
+            velocity: self.moving.velocity[k],
+            spin: self.moving.spin[k],
+            radius: fixed.radius[slot],
+            inv_mass: fixed.inv_mass[slot],
+        };
+        let (a, b) = (sphere(i, ki), sphere(j, kj));
+        let closing = -(a.velocity - b.velocity).dot(n);
+        if closing <= setting.threshold {
             return false;
         }
-        // v1' = ((m1 - m2) v1 + 2 m2 v2) / (m1 + m2) along n, scaled by e (P2).
-        let impulse = (1.0 + setting.ball_restitution) * closing / (wi + wj);
-        let (dvi, dvj) = (n * (impulse * wi), n * (-impulse * wj));
+        // Along n, v1' = ((m1 - m2) v1 + 2 m2 v2) / (m1 + m2) scaled by e
+        // (P2); across it, friction sticks or slides (F1).
+        let Some(change) =
+            collide_spheres(&a, &b, n, setting.ball_restitution, setting.ball_friction)
+        else {
+            return false;
+        };
+        let [dvi, dvj] = change.velocity;
         self.keep_start_velocity(i);
         self.keep_start_velocity(j);
         let moving = &mut self.moving;
         moving.velocity[ki] += dvi;
         moving.velocity[kj] += dvj;
+        moving.spin[ki] += change.spin[0];
+        moving.spin[kj] += change.spin[1];
         moving.shift[ki] -= dvi * t;
         moving.shift[kj] -= dvj * t;
         let fall = 0.5 * setting.gravity * (t * t - t * setting.dt);

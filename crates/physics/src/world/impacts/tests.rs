@@ -14,6 +14,8 @@ fn crowd(n: usize, seed: u64) -> World {
     cfg.room.restitution = 1.0;
     cfg.room.friction = 0.0;
     cfg.room.rolling_resistance = 0.0;
+    cfg.balls.friction = 0.0;
+    cfg.balls.rolling_resistance = 0.0;
     cfg.solver.bounce_threshold = 0.0;
     cfg.room.size = DVec3::new(8.0, 4.0, 8.0);
     World::new(cfg, seed).expect("the crowd builds")
