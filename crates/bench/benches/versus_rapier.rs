@@ -1,16 +1,23 @@
 //! The rolypoly engine against Rapier on the same ball pit, in one process.
 //!
-//! `cargo bench -p rolypoly-bench` runs pits of 1k, 10k and 100k balls;
+//! `cargo bench -p rolypoly-bench` runs pits of 1k, 10k and 100k balls
+//! twice: first with Coulomb friction 0.5 between balls (the headline
+//! table), then frictionless between balls; the walls' friction is 0.5 in
+//! both, and neither engine has rolling resistance.
 //! `cargo bench -p rolypoly-bench -- 1000 5000` picks the sizes and
 //! `-- 10000 10s` the simulated time too (3 s unless told). Each pit is
 //! simulated for the same time by both engines from the same start, in
 //! turns of half a simulated second, on the same threads (all of the
 //! machine's, or `RAYON_NUM_THREADS`; Rapier is built with its `parallel`
 //! feature); only `step` calls are timed. Quality is measured after every
-//! turn (untimed) and at the end. The ratio of the speeds is also printed
-//! turn by turn (lowest, median, highest), to show how much the machine
-//! moved it. After the 10k and 100k pits it says whether the engine's
-//! targets for them were met.
+//! turn (untimed) and at the end. The share of balls at rest is also
+//! measured at 10 s of simulated time: within the run where it lasts that
+//! long, else by running pits of up to 10 000 balls on, untimed, after it
+//! (a 100 000-ball pit would keep Rapier minutes more). The ratio of the
+//! speeds is also printed turn by turn (lowest, median, highest), to show
+//! how much the machine moved it. After the 10k and 100k pits it says
+//! whether the engine's targets for them were met, and with friction
+//! whether both engines had 99 % of the balls at rest at 10 s.
 
 use glam::DVec3;
 use rolypoly_bench::ours::OurPit;
@@ -23,12 +30,28 @@ use std::time::Instant;
 /// Simulated time of every pit run unless an argument such as `10s` says otherwise.
 const SECONDS: f64 = 3.0;
 
+/// Coulomb friction between balls in the headline table.
+const FRICTION: f64 = 0.5;
+
+/// When the share of balls at rest is measured besides the end (s).
+const REST_AT: f64 = 10.0;
+
+/// The largest pit run on past its end, untimed, to measure rest at
+/// [`REST_AT`] when the run is shorter.
+const REST_AT_MOST_BALLS: usize = 10_000;
+
+/// At least this share of balls at rest at [`REST_AT`] with friction, in
+/// both engines.
+const RESTING_TARGET: f64 = 0.99;
+
 struct Run {
     steps_per_second: f64,
     /// Worst over the run (penetration, escapes).
     worst: Quality,
     /// At the end (energy, rest).
     end: Quality,
+    /// At [`REST_AT`], where measured.
+    rest_at: Option<Quality>,
     /// Seconds spent in `step` in each turn.
     turns: Vec<f64>,
 }
@@ -40,6 +63,7 @@ struct Timing<'a> {
     turns: Vec<f64>,
     worst: Quality,
     last: Quality,
+    rest_at: Option<Quality>,
 }
 
 impl Timing<'_> {
@@ -61,30 +85,58 @@ impl Timing<'_> {
 /// Runs both engines on `pit` for `seconds`, in turn, half a simulated
 /// second each: the machine's speed wanders over a run, and taking turns
 /// lets both engines meet the same wander, so that the ratio of their
-/// speeds holds from run to run better than either speed does.
-fn run_in_turn(engines: [&mut dyn PitEngine; 2], pit: &Pit, seconds: f64) -> [Run; 2] {
+/// speeds holds from run to run better than either speed does. With
+/// `rest_at` (seconds) the quality at that time is kept too: a turn ends
+/// there when the run lasts that long, else both engines are stepped on
+/// to it after the run, untimed.
+fn run_in_turn(
+    engines: [&mut dyn PitEngine; 2],
+    pit: &Pit,
+    seconds: f64,
+    rest_at: Option<f64>,
+) -> [Run; 2] {
     let steps = ((seconds / pit.dt).round() as usize).max(1);
     let turn = ((0.5 / pit.dt).round() as usize).max(1);
+    let rest_at = rest_at.map(|t| ((t / pit.dt).round() as usize).max(1));
     let mut read = (Vec::new(), Vec::new());
     let mut timings = engines.map(|engine| Timing {
         engine,
         turns: Vec::new(),
         worst: Quality::default(),
         last: Quality::default(),
+        rest_at: None,
     });
     let mut done = 0;
     while done < steps {
-        let now = turn.min(steps - done);
+        let mut now = turn.min(steps - done);
+        if let Some(at) = rest_at.filter(|&at| at > done) {
+            now = now.min(at - done);
+        }
         for t in &mut timings {
             t.advance(pit, now, &mut read);
         }
         done += now;
+        if rest_at == Some(done) {
+            for t in &mut timings {
+                t.rest_at = Some(t.last);
+            }
+        }
+    }
+    if let Some(at) = rest_at.filter(|&at| at > steps) {
+        for t in &mut timings {
+            for _ in steps..at {
+                t.engine.step();
+            }
+            t.engine.read(&mut read.0, &mut read.1);
+            t.rest_at = Some(measure(pit, &read.0, &read.1));
+        }
     }
     // The last turn ends the run: its quality is the end's.
     timings.map(|t| Run {
         steps_per_second: steps as f64 / t.turns.iter().sum::<f64>(),
         worst: t.worst,
         end: t.last,
+        rest_at: t.rest_at,
         turns: t.turns,
     })
 }
@@ -102,9 +154,35 @@ fn ratio_by_turn(ours: &Run, rapier: &Run) -> Option<[f64; 3]> {
     Some([lowest, ratios[ratios.len() / 2], highest])
 }
 
-fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
+/// The share of `balls` that `q` counted at rest.
+fn resting_share(q: &Quality, balls: usize) -> f64 {
+    q.resting as f64 / balls as f64
+}
+
+fn print_header() {
     println!(
-        "{:>7} {:<14} {:>9.1} {:>13.3e} {:>7.2} {:>13.2} {:>8} {:>12.3} {:>8} {:>8.1}%",
+        "{:>7} {:<14} {:>9} {:>13} {:>7} {:>13} {:>8} {:>12} {:>8} {:>9} {:>10}",
+        "balls",
+        "engine",
+        "steps/s",
+        "ball-steps/s",
+        "ratio",
+        "overlap (mm)",
+        "escapes",
+        "KE end (J)",
+        "at rest",
+        "resting",
+        format!("at {REST_AT} s"),
+    );
+}
+
+fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
+    let rest_at = match &r.rest_at {
+        Some(q) => format!("{:.1}%", 100.0 * resting_share(q, balls)),
+        None => "-".into(),
+    };
+    println!(
+        "{:>7} {:<14} {:>9.1} {:>13.3e} {:>7.2} {:>13.2} {:>8} {:>12.3} {:>8} {:>8.1}% {:>10}",
         balls,
         name,
         r.steps_per_second,
@@ -114,7 +192,8 @@ fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
         r.worst.escapes,
         r.end.kinetic_energy,
         if r.end.at_rest() { "yes" } else { "no" },
-        100.0 * r.end.resting as f64 / balls as f64,
+        100.0 * resting_share(&r.end, balls),
+        rest_at,
     );
 }
 
@@ -143,6 +222,20 @@ fn target_for(balls: usize, ours: &Run, rapier: &Run, ratio: f64) -> Option<Stri
     }
 }
 
+/// With friction between balls, whether both engines had at least
+/// [`RESTING_TARGET`] of the balls at rest at [`REST_AT`], where measured.
+fn rest_target(balls: usize, ours: &Run, rapier: &Run) -> Option<String> {
+    let (ours, rapier) = (ours.rest_at.as_ref()?, rapier.rest_at.as_ref()?);
+    let met = [ours, rapier]
+        .iter()
+        .all(|q| resting_share(q, balls) >= RESTING_TARGET);
+    Some(format!(
+        "target: at least {:.0} % of the balls at rest at {REST_AT} s in both engines: {}",
+        100.0 * RESTING_TARGET,
+        if met { "met" } else { "NOT met" }
+    ))
+}
+
 /// Step time of the default scene with the fireball flying (ours only).
 fn default_scene_with_fireball() -> Result<f64, String> {
     let mut world = World::new(WorldConfig::default(), 1).map_err(|e| e.to_string())?;
@@ -162,8 +255,8 @@ fn default_scene_with_fireball() -> Result<f64, String> {
 
 fn main() {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
-    // `--csv FILE`: the steps per second of each engine at each size, for
-    // the figure in docs/figures/.
+    // `--csv FILE`: the steps per second of each engine at each size and
+    // friction between balls (both tables), for the figure in docs/figures/.
     let csv = match args.iter().position(|a| a == "--csv") {
         None => None,
         Some(at) if at + 1 < args.len() => {
@@ -176,7 +269,7 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let mut rows = String::from("balls,engine,steps_per_second\n");
+    let mut rows = String::from("balls,engine,ball_friction,steps_per_second\n");
     let seconds = match args
         .iter()
         .find(|a| a.ends_with('s') && !a.starts_with('-'))
@@ -208,59 +301,63 @@ fn main() {
     };
     println!(
         "pit: balls of radius 0.1 m, mass 1 kg, restitution 0.8, wall friction 0.5, \
-         dt 1/60 s, {seconds} s simulated; threads, for both engines: {}",
+         no rolling resistance, dt 1/60 s, {seconds} s simulated; threads, for both engines: {}",
         rayon_threads()
     );
     println!(
         "overlap: deepest over the run; at rest: every ball slower than {} cm/s at the end; \
-         resting: the share of balls that are",
+         resting: the share of balls that are, at the end and at {REST_AT} s \
+         (pits of up to {REST_AT_MOST_BALLS} balls run on untimed to it; '-': not measured)",
         100.0 * rolypoly_bench::quality::REST_SPEED
     );
-    println!(
-        "{:>7} {:<14} {:>9} {:>13} {:>7} {:>13} {:>8} {:>12} {:>8} {:>9}",
-        "balls",
-        "engine",
-        "steps/s",
-        "ball-steps/s",
-        "ratio",
-        "overlap (mm)",
-        "escapes",
-        "KE end (J)",
-        "at rest",
-        "resting"
-    );
-    for n in sizes {
-        let pit = Pit::new(n, 7);
-        let mut ours = match OurPit::new(&pit) {
-            Ok(p) => p,
-            Err(e) => {
-                eprintln!("versus_rapier: {n} balls: {e}");
-                std::process::exit(1);
+    let tables = [
+        (FRICTION, format!("friction {FRICTION} between balls")),
+        (0.0, "frictionless between balls".to_string()),
+    ];
+    for (friction, title) in tables {
+        println!();
+        println!("{title}:");
+        print_header();
+        for &n in &sizes {
+            let pit = Pit::new(n, 7).with_ball_friction(friction);
+            let mut ours = match OurPit::new(&pit) {
+                Ok(p) => p,
+                Err(e) => {
+                    eprintln!("versus_rapier: {n} balls: {e}");
+                    std::process::exit(1);
+                }
+            };
+            let mut rapier = RapierPit::new(&pit);
+            let name = rapier.name();
+            let rest_at = (seconds >= REST_AT || n <= REST_AT_MOST_BALLS).then_some(REST_AT);
+            let [our_run, rapier_run] =
+                run_in_turn([&mut ours, &mut rapier], &pit, seconds, rest_at);
+            let retaken = ours.world().retakes();
+            let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
+            print_row(n, "rolypoly", &our_run, ratio);
+            print_row(n, &name, &rapier_run, 1.0);
+            rows += &format!("{n},rolypoly,{friction},{:.2}\n", our_run.steps_per_second);
+            rows += &format!("{n},{name},{friction},{:.2}\n", rapier_run.steps_per_second);
+            if let Some([lowest, median, highest]) = ratio_by_turn(&our_run, &rapier_run) {
+                println!(
+                    "{:>7} ratio turn by turn ({} turns): lowest {lowest:.2}, median {median:.2}, \
+                     highest {highest:.2}",
+                    "",
+                    our_run.turns.len()
+                );
             }
-        };
-        let mut rapier = RapierPit::new(&pit);
-        let name = rapier.name();
-        let [our_run, rapier_run] = run_in_turn([&mut ours, &mut rapier], &pit, seconds);
-        let retaken = ours.world().retakes();
-        let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
-        print_row(n, "rolypoly", &our_run, ratio);
-        print_row(n, &name, &rapier_run, 1.0);
-        rows += &format!("{n},rolypoly,{:.2}\n", our_run.steps_per_second);
-        rows += &format!("{n},{name},{:.2}\n", rapier_run.steps_per_second);
-        if let Some([lowest, median, highest]) = ratio_by_turn(&our_run, &rapier_run) {
             println!(
-                "{:>7} ratio turn by turn ({} turns): lowest {lowest:.2}, median {median:.2}, \
-                 highest {highest:.2}",
-                "",
-                our_run.turns.len()
+                "{:>7} rolypoly steps retaken with less warm start: {retaken}",
+                ""
             );
-        }
-        println!(
-            "{:>7} rolypoly steps retaken with less warm start: {retaken}",
-            ""
-        );
-        if let Some(target) = target_for(n, &our_run, &rapier_run, ratio) {
-            println!("{:>7} {target}", "");
+            if let Some(target) = target_for(n, &our_run, &rapier_run, ratio) {
+                println!("{:>7} {target}", "");
+            }
+            if friction > 0.0
+                && let Some(target) = rest_target(n, &our_run, &rapier_run)
+            {
+                println!("{:>7} {target}", "");
+            }
         }
     }
     if let Some(path) = csv {

@@ -8,7 +8,7 @@ use std::f64::consts::{FRAC_PI_2, TAU};
 use glam::DVec3;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
-use rolypoly_physics::{SphereSpec, TumblerPlacement, World, WorldConfig};
+use rolypoly_physics::{PourConfig, SphereSpec, TumblerPlacement, World, WorldConfig};
 
 /// A figure: its file name in docs/figures/ and its SVG text.
 pub struct Figure {
@@ -16,33 +16,41 @@ pub struct Figure {
     pub name: &'static str,
     /// The SVG.
     pub svg: String,
+    /// The figure's numbers as a small table, for figures whose numbers are
+    /// worth reading as well as seeing.
+    pub table: Option<String>,
+}
+
+impl Figure {
+    fn drawn(name: &'static str, svg: String) -> Figure {
+        Figure {
+            name,
+            svg,
+            table: None,
+        }
+    }
 }
 
 /// Every figure, in the order the docs show them.
 pub fn all() -> Result<Vec<Figure>, String> {
+    let (heap, heap_table) = angle_of_repose_figure()?;
     Ok(vec![
+        Figure::drawn("tumbler-period.svg", tumbler_period()?),
+        Figure::drawn("bounce-height.svg", bounce_height()?),
+        Figure::drawn("energy.svg", energy()?),
+        Figure::drawn("steps-per-second.svg", steps_per_second(STEPS_PER_SECOND)?),
         Figure {
-            name: "tumbler-period.svg",
-            svg: tumbler_period()?,
-        },
-        Figure {
-            name: "bounce-height.svg",
-            svg: bounce_height()?,
-        },
-        Figure {
-            name: "energy.svg",
-            svg: energy()?,
-        },
-        Figure {
-            name: "steps-per-second.svg",
-            svg: steps_per_second(STEPS_PER_SECOND)?,
+            name: "angle-of-repose.svg",
+            svg: heap,
+            table: Some(heap_table),
         },
     ])
 }
 
 const SIZE: (u32, u32) = (640, 400);
 
-/// Steps per second of each engine at each size, as one run of
+/// Steps per second of each engine at each size, with friction between
+/// balls and without, as one run of
 /// `cargo bench -p rolypoly-bench -- --csv FILE` wrote them: a bench run
 /// takes minutes, so the figure is drawn from its record, not run anew.
 const STEPS_PER_SECOND: &str = include_str!("../../../docs/figures/steps-per-second.csv");
@@ -248,15 +256,24 @@ fn energy() -> Result<String, String> {
     )
 }
 
-/// Steps per second against ball count, both engines, from `csv`
-/// (`balls,engine,steps_per_second` lines under a header).
+/// Steps per second against ball count, both engines, with friction
+/// between balls and without, from `csv`
+/// (`balls,engine,ball_friction,steps_per_second` lines under a header).
+/// Each engine has its colour; a pit with friction between balls is drawn
+/// with a solid line, a frictionless one with a dashed line.
 fn steps_per_second(csv: &str) -> Result<String, String> {
-    let mut engines: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+    /// One engine's steps per second at each size, at one friction.
+    struct Runs {
+        engine: String,
+        friction: f64,
+        points: Vec<(f64, f64)>,
+    }
+    let mut runs: Vec<Runs> = Vec::new();
     for (n, line) in csv.lines().enumerate().skip(1) {
         let fields: Vec<&str> = line.split(',').collect();
-        let [balls, engine, rate] = fields[..] else {
+        let [balls, engine, friction, rate] = fields[..] else {
             return Err(format!(
-                "steps-per-second.csv:{}: not balls,engine,steps_per_second",
+                "steps-per-second.csv:{}: not balls,engine,ball_friction,steps_per_second",
                 n + 1
             ));
         };
@@ -264,27 +281,53 @@ fn steps_per_second(csv: &str) -> Result<String, String> {
             text.parse::<f64>()
                 .map_err(|_| format!("steps-per-second.csv:{}: `{text}` is not a number", n + 1))
         };
+        let friction = number(friction)?;
         let point = (number(balls)?, number(rate)?);
-        match engines.iter_mut().find(|(name, _)| name == engine) {
-            Some((_, points)) => points.push(point),
-            None => engines.push((engine.to_owned(), vec![point])),
+        match runs
+            .iter_mut()
+            .find(|r| r.engine == engine && r.friction == friction)
+        {
+            Some(r) => r.points.push(point),
+            None => runs.push(Runs {
+                engine: engine.to_owned(),
+                friction,
+                points: vec![point],
+            }),
         }
     }
-    let all = || engines.iter().flat_map(|(_, p)| p.iter().copied());
+    if runs.is_empty() {
+        return Err("steps-per-second.csv holds no runs".into());
+    }
+    let all = || runs.iter().flat_map(|r| r.points.iter().copied());
     let (x_lo, x_hi) = all().fold((f64::MAX, 0.0_f64), |(lo, hi), p| {
         (lo.min(p.0), hi.max(p.0))
     });
     let (y_lo, y_hi) = all().fold((f64::MAX, 0.0_f64), |(lo, hi), p| {
         (lo.min(p.1), hi.max(p.1))
     });
-    if engines.is_empty() {
-        return Err("steps-per-second.csv holds no runs".into());
+    let mut engines: Vec<&str> = Vec::new();
+    for r in &runs {
+        if !engines.contains(&r.engine.as_str()) {
+            engines.push(&r.engine);
+        }
     }
     let colors = [RED, BLUE];
-    let series: Vec<Series> = engines
-        .into_iter()
-        .zip(colors.iter().cycle())
-        .map(|((name, points), color)| Series::measured(&name, points, *color))
+    let color_of = |name: &str| {
+        let at = engines.iter().position(|&e| e == name).unwrap_or(0);
+        colors[at % colors.len()]
+    };
+    let series: Vec<Series> = runs
+        .iter()
+        .map(|r| {
+            let color = color_of(&r.engine);
+            if r.friction > 0.0 {
+                let label = format!("{}, friction {}", r.engine, r.friction);
+                Series::measured(&label, r.points.clone(), color)
+            } else {
+                let label = format!("{}, frictionless", r.engine);
+                Series::measured(&label, r.points.clone(), color).dashed()
+            }
+        })
         .collect();
     plot(
         "Steps per second against ball count (the ball pit, 2 threads)",
@@ -295,6 +338,127 @@ fn steps_per_second(csv: &str) -> Result<String, String> {
     )
 }
 
+/// Coulomb friction between balls at which the heap is poured.
+pub const HEAP_FRICTIONS: [f64; 7] = [0.0, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0];
+
+/// Rolling resistance between balls, one curve each.
+pub const HEAP_ROLLING_RESISTANCES: [f64; 3] = [0.0, 0.05, 0.1];
+
+/// Balls poured into each heap.
+pub const HEAP_BALLS: usize = 800;
+
+/// Seconds the heap is left to settle after the last ball is let go.
+const HEAP_SETTLING: f64 = 3.0;
+
+/// A heap poured from a spout: `HEAP_BALLS` balls of radius 4 cm, mass
+/// 30 g and restitution 0.3, let go at rest 300 a second from a spout of
+/// radius 10 cm, 80 cm above the middle of the floor, in a room of
+/// 3 x 1.5 x 3 m with no tumblers and no fireball. Balls, floor and walls
+/// are of one material: Coulomb friction `friction` and rolling resistance
+/// `rolling_resistance` between balls and on the room's surfaces alike.
+/// The room is wide enough that a heap standing at 10 degrees or more does
+/// not reach its walls.
+pub fn heap_config(friction: f64, rolling_resistance: f64) -> WorldConfig {
+    let mut config = WorldConfig::default();
+    config.tumblers.placements.clear();
+    config.fireball.starts_active = false;
+    config.room.size = DVec3::new(3.0, 1.5, 3.0);
+    config.room.restitution = 0.3;
+    config.room.friction = friction;
+    config.room.rolling_resistance = rolling_resistance;
+    config.balls.count = HEAP_BALLS;
+    config.balls.radius = 0.04;
+    config.balls.mass = 0.03;
+    config.balls.restitution = 0.3;
+    config.balls.friction = friction;
+    config.balls.rolling_resistance = rolling_resistance;
+    config.balls.speed_min = 0.0;
+    config.balls.speed_max = 0.0;
+    config.balls.pour = PourConfig {
+        rate: 300.0,
+        spout: DVec3::new(0.0, 0.8, 0.0),
+        radius: 0.1,
+    };
+    config
+}
+
+/// The angle of repose in degrees of the heap [`heap_config`] pours, read
+/// when every ball has been let go and the heap has settled for
+/// `HEAP_SETTLING` seconds; `None` where the balls form no flank.
+pub fn heap_angle(friction: f64, rolling_resistance: f64) -> Option<f64> {
+    let config = heap_config(friction, rolling_resistance);
+    let radius = config.balls.radius;
+    let seconds = config.balls.count as f64 / config.balls.pour.rate + HEAP_SETTLING;
+    let steps = (seconds / config.solver.dt).ceil() as usize;
+    let mut world = World::new(config, 1).expect("the heap's room builds");
+    for _ in 0..steps {
+        world.step();
+        world.drain_events().for_each(drop);
+    }
+    rolypoly_physics::angle_of_repose(world.balls().positions(), radius, [0.0, 0.0])
+}
+
+/// The angle of repose against friction between balls, one curve per
+/// rolling resistance, and the same numbers as a table.
+fn angle_of_repose_figure() -> Result<(String, String), String> {
+    let angles: Vec<Vec<Option<f64>>> = HEAP_ROLLING_RESISTANCES
+        .iter()
+        .map(|&rolling| {
+            HEAP_FRICTIONS
+                .iter()
+                .map(|&mu| heap_angle(mu, rolling))
+                .collect()
+        })
+        .collect();
+
+    let mut table = format!(
+        "angle of repose (degrees) of {HEAP_BALLS} poured balls, '-': no flank\n{:>8}",
+        "friction"
+    );
+    for rolling in HEAP_ROLLING_RESISTANCES {
+        table += &format!(" {:>14}", format!("rolling {rolling}"));
+    }
+    for (k, mu) in HEAP_FRICTIONS.iter().enumerate() {
+        table += &format!("\n{mu:>8.2}");
+        for row in &angles {
+            match row[k] {
+                Some(angle) => table += &format!(" {angle:>14.1}"),
+                None => table += &format!(" {:>14}", "-"),
+            }
+        }
+    }
+    table.push('\n');
+
+    let colors = [BLUE, RGBColor(0, 150, 0), RED];
+    let series: Vec<Series> = HEAP_ROLLING_RESISTANCES
+        .iter()
+        .zip(&angles)
+        .zip(colors.iter().cycle())
+        .map(|((rolling, row), color)| {
+            let points = HEAP_FRICTIONS
+                .iter()
+                .zip(row)
+                .filter_map(|(&mu, angle)| angle.map(|a| (mu, a)))
+                .collect();
+            Series::measured(&format!("rolling resistance {rolling}"), points, *color)
+        })
+        .collect();
+    let top = angles
+        .iter()
+        .flatten()
+        .flatten()
+        .copied()
+        .fold(60.0, f64::max);
+    let svg = plot(
+        "Angle of repose of a poured heap against friction between balls",
+        ("friction between balls", 0.0..1.05),
+        ("angle of repose (degrees)", 0.0..top),
+        &series,
+        SeriesLabelPosition::LowerRight,
+    )?;
+    Ok((svg, table))
+}
+
 /// What a figure draws of one set of points: a line through them, a dot
 /// at each, or both; with its label and colour.
 struct Series {
@@ -303,6 +467,8 @@ struct Series {
     color: RGBColor,
     line: bool,
     dots: bool,
+    /// Whether the line is dashed.
+    dashed: bool,
 }
 
 impl Series {
@@ -320,6 +486,14 @@ impl Series {
             color,
             line,
             dots,
+            dashed: false,
+        }
+    }
+    /// The same with its line dashed.
+    fn dashed(self) -> Series {
+        Series {
+            dashed: true,
+            ..self
         }
     }
     /// A curve, such as theory.
@@ -368,7 +542,25 @@ where
             .map_err(|e| e.to_string())?;
         for s in series {
             let color = s.color;
-            if s.line {
+            if s.line && s.dashed {
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        s.points.iter().copied(),
+                        6,
+                        4,
+                        color.stroke_width(2),
+                    ))
+                    .map_err(|e| e.to_string())?
+                    .label(s.label.as_str())
+                    .legend(move |(x, y)| {
+                        plotters::element::DashedPathElement::new(
+                            vec![(x, y), (x + 20, y)],
+                            6,
+                            4,
+                            color.stroke_width(2),
+                        )
+                    });
+            } else if s.line {
                 chart
                     .draw_series(LineSeries::new(
                         s.points.iter().copied(),
@@ -402,4 +594,28 @@ where
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn steps_per_second_draws_each_engine_with_friction_and_without() {
+        let csv = "balls,engine,ball_friction,steps_per_second\n\
+                   1000,ours,0.5,500\n1000,theirs,0.5,400\n\
+                   10000,ours,0.5,50\n10000,theirs,0.5,40\n\
+                   1000,ours,0,1500\n1000,theirs,0,450\n";
+        let svg = steps_per_second(csv).expect("the figure draws");
+        for label in [
+            "ours, friction 0.5",
+            "theirs, friction 0.5",
+            "ours, frictionless",
+            "theirs, frictionless",
+        ] {
+            assert!(svg.contains(label), "no `{label}` in the legend");
+        }
+        assert!(steps_per_second("balls,engine,steps_per_second\n1000,ours,500\n").is_err());
+        assert!(steps_per_second("balls,engine,ball_friction,steps_per_second\n").is_err());
+    }
 }

@@ -27,6 +27,12 @@ impl OurPit {
         config.balls.radius = pit.radius;
         config.balls.mass = pit.mass;
         config.balls.restitution = pit.restitution;
+        config.balls.friction = pit.ball_friction;
+        // Rapier has no rolling resistance, so neither pit has any: not
+        // between balls, not on the walls.
+        config.balls.rolling_resistance = 0.0;
+        // Every ball starts at once, where the pit puts it: none is poured.
+        config.balls.pour.rate = 0.0;
         let mut world = World::new(config, 1).map_err(|e| e.to_string())?;
         for (i, s) in pit.start.iter().enumerate() {
             world.balls_mut().set(i, s.position, s.velocity);

@@ -1,5 +1,9 @@
 //! The ball pit both engines simulate: the same spheres, box, materials,
 //! time step and starting state.
+//!
+//! A pit has two Coulomb friction coefficients, one between a ball and a
+//! wall and one between two balls, and no rolling resistance: Rapier has
+//! none to match ours with.
 
 use glam::DVec3;
 
@@ -22,9 +26,11 @@ pub struct Pit {
     pub mass: f64,
     /// Restitution of every contact, ball-ball and ball-wall.
     pub restitution: f64,
-    /// Coulomb friction between a ball and a wall; balls slide on each other
-    /// without friction.
+    /// Coulomb friction between a ball and a wall.
     pub wall_friction: f64,
+    /// Coulomb friction between two balls (0: they slide on each other
+    /// without friction).
+    pub ball_friction: f64,
     /// Gravitational acceleration, along -y (m/s²).
     pub gravity: f64,
     /// The fixed time step (s).
@@ -53,7 +59,8 @@ const SPACING: f64 = 2.5;
 impl Pit {
     /// `count` balls of radius 0.1 m and mass 1 kg on a jittered lattice
     /// `LAYERS` deep, with small random velocities, in a box just wide
-    /// enough for the lattice and half again as tall.
+    /// enough for the lattice and half again as tall; frictionless between
+    /// balls (see [`Pit::with_ball_friction`]).
     pub fn new(count: usize, seed: u64) -> Pit {
         let radius = 0.1;
         let spacing = SPACING * radius;
@@ -88,10 +95,17 @@ impl Pit {
             mass: 1.0,
             restitution: 0.8,
             wall_friction: 0.5,
+            ball_friction: 0.0,
             gravity: 9.81,
             dt: 1.0 / 60.0,
             size: DVec3::new(width, height, width),
             start,
         }
+    }
+
+    /// The same pit with Coulomb friction `mu` between balls.
+    pub fn with_ball_friction(mut self, mu: f64) -> Pit {
+        self.ball_friction = mu;
+        self
     }
 }

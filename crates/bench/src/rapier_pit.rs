@@ -1,10 +1,21 @@
 //! The same ball pit in Rapier (rapier3d 0.36, f32), for the side-by-side
 //! benchmark against the rolypoly engine.
 //!
-//! Rapier combines two colliders' friction with the `Average` rule by
-//! default. Balls have friction 0, so walls get `2 * wall_friction`: a
-//! ball-wall contact then averages to `wall_friction` and ball-ball contacts
-//! stay frictionless, as `Pit` specifies.
+//! Rapier gives a contact the friction of its two colliders combined by a
+//! rule each collider names; where the two name different rules, the one
+//! of higher priority wins (in rapier3d 0.36, from highest: `GeometricMean`,
+//! `ClampedSum`, `Max`, `Multiply`, `Min`, `Average`). So that every pair
+//! gets exactly the pit's coefficient, with no arithmetic to round:
+//!
+//! - balls have friction `ball_friction` and the rule `Average`: two balls
+//!   average `ball_friction` with itself, which is `ball_friction`;
+//! - walls have friction `wall_friction` and the rule `Max` where
+//!   `wall_friction >= ball_friction`, `Min` where it is less: either
+//!   outranks the balls' `Average`, and the larger (or smaller) of the two
+//!   coefficients is then `wall_friction`.
+//!
+//! Restitution is the same on every collider, so the default `Average`
+//! gives every pair the pit's. Rapier has no rolling resistance.
 
 use glam::DVec3;
 use rapier3d::prelude::*;
@@ -80,12 +91,20 @@ impl RapierPit {
                 Vector::new(0.0, half.y, half.z + WALL * 0.5),
             ),
         ];
+        // See the module's documentation for how the rules give each pair its
+        // coefficient.
+        let wall_rule = if pit.wall_friction >= pit.ball_friction {
+            CoefficientCombineRule::Max
+        } else {
+            CoefficientCombineRule::Min
+        };
         for (half_extents, centre) in slabs {
             colliders.insert(
                 ColliderBuilder::cuboid(half_extents.x, half_extents.y, half_extents.z)
                     .translation(centre)
                     .restitution(pit.restitution as f32)
-                    .friction(2.0 * pit.wall_friction as f32),
+                    .friction(pit.wall_friction as f32)
+                    .friction_combine_rule(wall_rule),
             );
         }
 
@@ -102,7 +121,8 @@ impl RapierPit {
                     ColliderBuilder::ball(pit.radius as f32)
                         .mass(pit.mass as f32)
                         .restitution(pit.restitution as f32)
-                        .friction(0.0),
+                        .friction(pit.ball_friction as f32)
+                        .friction_combine_rule(CoefficientCombineRule::Average),
                     body,
                     &mut bodies,
                 );
@@ -170,6 +190,53 @@ mod tests {
     use super::*;
     use crate::pit::Start;
 
+    /// The friction Rapier gave each contact pair after a step of two
+    /// touching balls resting on the floor: (ball-ball, ball-wall).
+    fn pair_frictions(ball_friction: f64, wall_friction: f64) -> (Vec<f32>, Vec<f32>) {
+        let still = |x| Start {
+            position: DVec3::new(x, 0.1, 0.0),
+            velocity: DVec3::ZERO,
+        };
+        let pit = Pit {
+            radius: 0.1,
+            mass: 1.0,
+            restitution: 0.5,
+            wall_friction,
+            ball_friction,
+            gravity: 9.81,
+            dt: 1.0 / 60.0,
+            size: DVec3::new(1.0, 1.0, 1.0),
+            start: vec![still(-0.1), still(0.1)],
+        };
+        let mut engine = RapierPit::new(&pit);
+        engine.step();
+        let is_ball = |h: ColliderHandle| engine.colliders[h].parent().is_some();
+        let (mut between_balls, mut on_walls) = (Vec::new(), Vec::new());
+        for pair in engine.narrow_phase.contact_pairs() {
+            for manifold in pair
+                .solver_manifolds()
+                .iter()
+                .filter(|m| !m.points.is_empty())
+            {
+                match (is_ball(pair.collider1), is_ball(pair.collider2)) {
+                    (true, true) => between_balls.push(manifold.data.friction),
+                    (false, false) => {}
+                    _ => on_walls.push(manifold.data.friction),
+                }
+            }
+        }
+        (between_balls, on_walls)
+    }
+
+    #[test]
+    fn every_pair_gets_the_pits_friction() {
+        for (ball, wall) in [(0.0, 0.5), (0.5, 0.5), (0.3, 0.5), (0.9, 0.5), (0.5, 0.0)] {
+            let (between_balls, on_walls) = pair_frictions(ball, wall);
+            assert_eq!(between_balls, [ball as f32], "ball {ball}, wall {wall}");
+            assert_eq!(on_walls, [wall as f32; 2], "ball {ball}, wall {wall}");
+        }
+    }
+
     #[test]
     fn ball_falls_freely_then_rests_on_floor() {
         let pit = Pit {
@@ -177,6 +244,7 @@ mod tests {
             mass: 1.0,
             restitution: 0.5,
             wall_friction: 0.5,
+            ball_friction: 0.0,
             gravity: 9.81,
             dt: 1.0 / 60.0,
             size: DVec3::new(1.0, 2.0, 1.0),

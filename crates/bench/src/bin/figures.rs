@@ -1,9 +1,14 @@
-//! Writes the figures of docs/figures/ (see `rolypoly_bench::figures`).
+//! Writes the figures of docs/figures/ (see `rolypoly_bench::figures`), or
+//! of the folder named by its one argument, and prints the numbers of those
+//! that have a table.
 
 use std::path::PathBuf;
 
 fn main() {
-    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/figures"));
+    let dir = match std::env::args_os().nth(1) {
+        Some(dir) => PathBuf::from(dir),
+        None => PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/figures")),
+    };
     let figures = match rolypoly_bench::figures::all() {
         Ok(figures) => figures,
         Err(e) => {
@@ -18,5 +23,8 @@ fn main() {
             std::process::exit(1);
         }
         println!("wrote {}", path.display());
+        if let Some(table) = figure.table {
+            print!("{table}");
+        }
     }
 }
