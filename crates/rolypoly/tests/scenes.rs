@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use rolypoly::scene::load_scene;
-use rolypoly_physics::{EventKind, World, WorldConfig};
+use rolypoly_physics::{EventKind, World, WorldConfig, angle_of_repose};
 
 fn scene_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -61,6 +61,7 @@ fn every_shipped_scene_loads_builds_and_says_how_to_run_it() {
         "elastic-gas.toml",
         "unequal-masses.toml",
         "tumbler-crowd.toml",
+        "heap.toml",
         "ballpit-10k.toml",
         "ballpit-100k.toml",
     ] {
@@ -209,6 +210,44 @@ fn the_tumbler_crowd_stands_upright_again_after_the_rain() {
                 "seed {seed}: ball {i} left the room"
             );
         }
+    }
+}
+
+#[test]
+fn the_poured_heap_comes_to_rest_at_an_angle_of_repose() {
+    for seed in [1, 2] {
+        let mut w = world("heap.toml", seed);
+        let c = w.config().balls.clone();
+        assert!(c.pour.rate > 0.0 && c.count >= 2000);
+        // The pour at its rate (and a moment more), then time to settle.
+        run(&mut w, c.count as f64 / c.pour.rate + 0.5);
+        assert_eq!(w.balls_to_pour(), 0, "seed {seed}: the pour is behind");
+        run(&mut w, 4.0);
+        let b = w.balls();
+        assert_eq!(b.len(), c.count, "seed {seed}");
+        assert!(b.alive().iter().all(|&a| a), "seed {seed}");
+        let room = *w.room();
+        for i in 0..b.len() {
+            assert!(
+                room.contains_sphere(b.positions()[i], b.radii()[i], 1e-6),
+                "seed {seed}: ball {i} left the room"
+            );
+        }
+        let resting = (0..b.len())
+            .filter(|&i| b.velocities()[i].length() < 0.05)
+            .count();
+        assert!(
+            resting * 100 >= 95 * b.len(),
+            "seed {seed}: only {resting} of {} balls rest",
+            b.len()
+        );
+        let axis = [c.pour.spout.x, c.pour.spout.z];
+        let angle = angle_of_repose(b.positions(), c.radius, axis);
+        println!("seed {seed}: {resting} balls at rest, the flank at {angle:?} degrees");
+        assert!(
+            angle.is_some_and(|a| (15.0..=30.0).contains(&a)),
+            "seed {seed}: the heap's flank stands at {angle:?} degrees"
+        );
     }
 }
 

@@ -21,13 +21,14 @@ macro_rules! shipped {
 
 /// Every file in `scenes/`, the default first (a test checks that none is
 /// missing).
-pub const SHIPPED_SCENES: [ShippedScene; 8] = shipped![
+pub const SHIPPED_SCENES: [ShippedScene; 9] = shipped![
     "default.toml",
     "newtons-cradle.toml",
     "billiards-break.toml",
     "unequal-masses.toml",
     "elastic-gas.toml",
     "tumbler-crowd.toml",
+    "heap.toml",
     "ballpit-10k.toml",
     "ballpit-100k.toml",
 ];

@@ -20,7 +20,7 @@ pub const MAX_SPEED: f64 = 100.0;
 const MAX_FRICTION: f64 = 5.0;
 /// Longest effect time (seconds) and largest effect radius or size (metres).
 const MAX_EFFECT: f64 = 10.0;
-/// Most particles an effect may spawn per second.
+/// Most particles an effect may spawn, or balls a spout may pour, per second.
 const MAX_RATE: f64 = 100_000.0;
 /// Largest light intensity.
 const MAX_INTENSITY: f64 = 100.0;
@@ -402,6 +402,22 @@ pub static KEYS: &[Key] = &[
         "Restitution of a ball-ball collision.",
     ),
     key_of(
+        "balls.friction",
+        Real(place!(world.balls.friction)),
+        Within(Bounds::closed(0.0, MAX_FRICTION)),
+        NextStep,
+        Slider("ball friction", 0.0, 1.5),
+        "Coulomb friction between two balls, and between a ball and a tumbler.",
+    ),
+    key_of(
+        "balls.rolling_resistance",
+        Real(place!(world.balls.rolling_resistance)),
+        Within(UNIT),
+        NextStep,
+        Slider("ball rolling resistance", 0.0, 0.2),
+        "As room.rolling_resistance, for a ball rolling on another ball or a tumbler.",
+    ),
+    key_of(
         "balls.speed_min",
         Real(place!(world.balls.speed_min)),
         Within(Bounds::closed(0.0, MAX_SPEED)),
@@ -444,6 +460,48 @@ pub static KEYS: &[Key] = &[
         Hidden,
         "Balls placed by hand, one [[balls.placement]] each: a position inside the room and clear of \
          the rest, and optionally velocity, spin (rad/s, at most 1000), color, radius and mass.",
+    ),
+    key_of(
+        "balls.pour.rate",
+        Real(place!(world.balls.pour.rate)),
+        Within(Bounds::closed(0.0, MAX_RATE)),
+        NextStep,
+        Hidden,
+        "Random balls poured per second, each dropped from a clear point of the spout's mouth; 0 \
+         starts them all at once, placed at random.",
+    ),
+    key_of(
+        "balls.pour.radius",
+        Real(place!(world.balls.pour.radius)),
+        Derived(
+            |scene| {
+                let (size, r) = (scene.world.room.size, scene.world.balls.radius);
+                Bounds::positive(size.x.min(size.z) / 2.0 - r)
+            },
+            "at most half the room's width and depth less balls.radius",
+        ),
+        NextStep,
+        Hidden,
+        "Radius in metres of the spout's mouth, the horizontal disc the balls are let go from.",
+    ),
+    key_of(
+        "balls.pour.spout",
+        Vector(place!(world.balls.pour.spout)),
+        EachDerived(
+            |scene| {
+                let (size, balls) = (scene.world.room.size, &scene.world.balls);
+                let (r, reach) = (balls.radius, balls.pour.radius + balls.radius);
+                [
+                    Bounds::closed(-size.x / 2.0 + reach, size.x / 2.0 - reach),
+                    Bounds::closed(r, size.y - r),
+                    Bounds::closed(-size.z / 2.0 + reach, size.z / 2.0 - reach),
+                ]
+            },
+            "the mouth, and a ball let go from it, inside the room",
+        ),
+        NextStep,
+        Hidden,
+        "The centre of the spout's mouth.",
     ),
     key_of(
         "tumblers.restitution",

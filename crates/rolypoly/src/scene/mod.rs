@@ -579,6 +579,36 @@ mod tests {
     }
 
     #[test]
+    fn a_spout_must_pour_inside_the_room() {
+        let text = error_text("[balls.pour]\nrate = 10\nspout = [0, 9, 0]\n");
+        assert_eq!(
+            text,
+            "test.toml:3: balls.pour.spout = [0, 9, 0] is out of range: allowed x -3.63 ..= 3.63, \
+             y 0.12 ..= 3.88, z -3.63 ..= 3.63 (the mouth, and a ball let go from it, inside the room)"
+        );
+        let text = error_text("[balls.pour]\nradius = 3.9\n");
+        assert!(
+            text.starts_with("test.toml:2: balls.pour.radius = 3.9 is out of range: allowed > 0"),
+            "{text}"
+        );
+        // A wider mouth, or a smaller room, leaves its centre less room.
+        let text = error_text("[balls.pour]\nradius = 3\nspout = [1, 2, 0]\n");
+        assert!(text.starts_with("test.toml:3: balls.pour.spout"), "{text}");
+        let text = error_text("[room]\nsize = [3, 1.5, 3]\n[tumblers]\nplacement = []\n");
+        assert!(
+            text.starts_with("test.toml: balls.pour.spout = [0, 2, 0] (built-in default)"),
+            "{text}"
+        );
+        let parsed =
+            parse("[balls.pour]\nrate = 50\nspout = [1, 0.5, -1]\nradius = 0.1\n").unwrap();
+        let pour = &parsed.world.balls.pour;
+        assert_eq!(
+            (pour.rate, pour.spout, pour.radius),
+            (50.0, DVec3::new(1.0, 0.5, -1.0), 0.1)
+        );
+    }
+
+    #[test]
     fn wrong_sphere_count_is_an_error() {
         let text = error_text("[tumblers]\nspheres = [{ height = 0, radius = 0.3, mass = 2 }]\n");
         assert!(text.starts_with("test.toml:2: tumblers.spheres"), "{text}");
