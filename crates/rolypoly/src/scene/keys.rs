@@ -476,9 +476,13 @@ pub static KEYS: &[Key] = &[
         Derived(
             |scene| {
                 let (size, r) = (scene.world.room.size, scene.world.balls.radius);
-                Bounds::positive(size.x.min(size.z) / 2.0 - r)
+                if scene.world.balls.pour.rate > 0.0 {
+                    Bounds::positive(size.x.min(size.z) / 2.0 - r)
+                } else {
+                    Bounds::positive(f64::INFINITY)
+                }
             },
-            "at most half the room's width and depth less balls.radius",
+            "at most half the room's width and depth less balls.radius, when balls.pour.rate > 0",
         ),
         NextStep,
         Hidden,
@@ -491,13 +495,17 @@ pub static KEYS: &[Key] = &[
             |scene| {
                 let (size, balls) = (scene.world.room.size, &scene.world.balls);
                 let (r, reach) = (balls.radius, balls.pour.radius + balls.radius);
+                if balls.pour.rate <= 0.0 {
+                    // Nothing is poured: the spout may be anywhere.
+                    return [Bounds::closed(f64::NEG_INFINITY, f64::INFINITY); 3];
+                }
                 [
                     Bounds::closed(-size.x / 2.0 + reach, size.x / 2.0 - reach),
                     Bounds::closed(r, size.y - r),
                     Bounds::closed(-size.z / 2.0 + reach, size.z / 2.0 - reach),
                 ]
             },
-            "the mouth, and a ball let go from it, inside the room",
+            "the mouth, and a ball let go from it, inside the room, when balls.pour.rate > 0",
         ),
         NextStep,
         Hidden,

@@ -584,21 +584,25 @@ mod tests {
         assert_eq!(
             text,
             "test.toml:3: balls.pour.spout = [0, 9, 0] is out of range: allowed x -3.63 ..= 3.63, \
-             y 0.12 ..= 3.88, z -3.63 ..= 3.63 (the mouth, and a ball let go from it, inside the room)"
+             y 0.12 ..= 3.88, z -3.63 ..= 3.63 (the mouth, and a ball let go from it, inside the \
+             room, when balls.pour.rate > 0)"
         );
-        let text = error_text("[balls.pour]\nradius = 3.9\n");
+        let text = error_text("[balls.pour]\nrate = 10\nradius = 3.9\n");
         assert!(
-            text.starts_with("test.toml:2: balls.pour.radius = 3.9 is out of range: allowed > 0"),
+            text.starts_with("test.toml:3: balls.pour.radius = 3.9 is out of range: allowed > 0"),
             "{text}"
         );
         // A wider mouth, or a smaller room, leaves its centre less room.
-        let text = error_text("[balls.pour]\nradius = 3\nspout = [1, 2, 0]\n");
-        assert!(text.starts_with("test.toml:3: balls.pour.spout"), "{text}");
-        let text = error_text("[room]\nsize = [3, 1.5, 3]\n[tumblers]\nplacement = []\n");
+        let text = error_text("[balls.pour]\nrate = 10\nradius = 3\nspout = [1, 2, 0]\n");
+        assert!(text.starts_with("test.toml:4: balls.pour.spout"), "{text}");
+        let low_room = "[room]\nsize = [3, 1.5, 3]\n[tumblers]\nplacement = []\n";
+        let text = error_text(&format!("{low_room}[balls.pour]\nrate = 10\n"));
         assert!(
             text.starts_with("test.toml: balls.pour.spout = [0, 2, 0] (built-in default)"),
             "{text}"
         );
+        // Nothing poured: the spout is not looked at.
+        assert!(parse("[balls.pour]\nspout = [0, 9, 0]\nradius = 9\n").is_ok());
         let parsed =
             parse("[balls.pour]\nrate = 50\nspout = [1, 0.5, -1]\nradius = 0.1\n").unwrap();
         let pour = &parsed.world.balls.pour;
