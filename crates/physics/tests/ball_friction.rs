@@ -166,3 +166,43 @@ fn a_cut_shot_throws_the_object_ball_off_the_line_of_centres() {
         }
     }
 }
+
+/// A ball dropped on a standing tumbler's top knot, spinning about x at 30
+/// rad/s, with friction `mu` between them: its velocity along z and the
+/// knot's, just after the impact.
+fn spinning_ball_on_a_tumbler(mu: f64) -> (f64, f64) {
+    let mut cfg = empty_room();
+    cfg.tumblers.placements = vec![common::tumbler_at(0.0, 0.0, DVec3::X, 0.0)];
+    cfg.balls.friction = mu;
+    let mut world = with_balls(cfg, 1);
+    let shape = world.tumbler_shape().clone();
+    let knot = world.tumblers()[0].sphere_center(&shape, 5);
+    let top = knot.y + shape.spheres[5].radius + world.config().balls.radius;
+    world
+        .balls_mut()
+        .set(0, DVec3::new(knot.x, top + 0.3, knot.z), DVec3::ZERO);
+    world.balls_mut().set_spin(0, DVec3::X * 30.0);
+    // The fall takes a quarter of a second; the bounce is over in a step.
+    for _ in 0..(0.3 / world.config().solver.dt) as usize {
+        world.step();
+    }
+    let ball = world.balls().velocities()[0].z;
+    let knot_now = world.tumblers()[0].sphere_center(&shape, 5);
+    (ball, world.tumblers()[0].point_velocity(knot_now).z)
+}
+
+#[test]
+fn a_spinning_ball_throws_a_tumbler_and_is_thrown_off_it() {
+    // The contact point of the ball slides along -z: friction sends the
+    // ball along +z and the tumbler's top along -z, more with more friction.
+    let (ball_0, top_0) = spinning_ball_on_a_tumbler(0.0);
+    assert!(ball_0.abs() < 1e-9 && top_0.abs() < 1e-9, "{ball_0} {top_0}");
+    let mut last = 0.0;
+    for mu in [0.1, 0.4] {
+        let (ball, top) = spinning_ball_on_a_tumbler(mu);
+        println!("mu {mu}: ball {ball:.3} m/s, tumbler's top {top:.3} m/s");
+        assert!(ball > last + 0.05, "mu {mu}: the ball is thrown at {ball} m/s");
+        assert!(top < -0.01, "mu {mu}: the tumbler's top moves at {top} m/s");
+        last = ball;
+    }
+}

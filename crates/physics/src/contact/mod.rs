@@ -41,6 +41,7 @@ mod bands;
 mod crowd;
 mod pair_friction;
 pub(crate) mod stages;
+mod tumbler_friction;
 mod wall_rows;
 pub(crate) mod warm;
 
@@ -50,6 +51,7 @@ pub(crate) use crowd::Crowd;
 use pair_friction::FrictionRow;
 pub(crate) use pair_friction::{FrictionImpulse, PairMaterial};
 pub(crate) use stages::{StepContext, solve_predict, solve_project};
+pub(crate) use tumbler_friction::TangentRows;
 use wall_rows::WallRows;
 use warm::WarmPart;
 pub(crate) use warm::{StageFriction, WarmStart};
@@ -91,6 +93,10 @@ pub(crate) struct Contact {
     pub pushed: f64,
     /// Whether the project stage bounces this contact.
     pub bounce: bool,
+    /// Coulomb friction at the contact (see [`tumbler_friction`]): a
+    /// ball's against a tumbler; 0 for the other contacts.
+    pub friction: f64,
+    pub slide: TangentRows,
 }
 
 impl Contact {
@@ -117,6 +123,8 @@ impl Contact {
             impulse: 0.0,
             pushed: 0.0,
             bounce: false,
+            friction: 0.0,
+            slide: TangentRows::default(),
         }
     }
 }
@@ -492,19 +500,23 @@ impl Contacts {
                     friction_impulses,
                     ..
                 } = band;
-                in_four_streams(rows.len(), |k| {
-                    let r = &rows[k];
-                    r.solve(&mut impulses[k], velocity, first, inv_mass);
-                    let slots = (&mut *velocity, &mut *spin);
-                    friction[k].solve(
-                        r,
-                        impulses[k],
-                        &mut friction_impulses[k],
-                        slots,
-                        first,
-                        inv_mass,
-                    );
-                });
+                in_four_streams(
+                    rows.len(),
+                    #[inline(always)]
+                    |k| {
+                        let r = &rows[k];
+                        r.solve(&mut impulses[k], velocity, first, inv_mass);
+                        let slots = (&mut *velocity, &mut *spin);
+                        friction[k].solve(
+                            r,
+                            impulses[k],
+                            &mut friction_impulses[k],
+                            slots,
+                            first,
+                            inv_mass,
+                        );
+                    },
+                );
             };
             let slots = (&mut balls.velocity[..], &mut balls.spin[..]);
             sweep_bands_of_two(&mut self.rows, &self.layers, slots, &solve);
@@ -665,6 +677,7 @@ impl Bodies<'_> {
         c.mass = if wa + wb > 0.0 { 1.0 / (wa + wb) } else { 0.0 };
         c.response_a = sa;
         c.response_b = sb;
+        self.prepare_friction(c);
     }
 
     /// One Gauss-Seidel update: drive the relative normal velocity to at

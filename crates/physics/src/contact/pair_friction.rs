@@ -117,7 +117,7 @@ impl FrictionRow {
 
     /// Applies `impulse` (of friction, and of rolling torque) to the two
     /// balls of `pair`: slots from `first` on.
-    #[inline]
+    #[inline(always)]
     pub fn push(
         &self,
         pair: &PairRow,
@@ -141,7 +141,7 @@ impl FrictionRow {
 
     /// One Gauss-Seidel update of the pair's friction and rolling rows,
     /// their limits set by the pair's accumulated `normal_impulse`.
-    #[inline]
+    #[inline(always)]
     pub fn solve(
         &self,
         pair: &PairRow,
@@ -151,20 +151,26 @@ impl FrictionRow {
         first: usize,
         inv_mass: &[f64],
     ) {
+        let limit = self.friction * normal_impulse;
+        if limit == 0.0 && self.rolling_arm == 0.0 && held.tangent == DVec3::ZERO {
+            // Nothing to hold and nothing held: a speculative contact.
+            return;
+        }
         let (ki, kj) = (pair.i as usize - first, pair.j as usize - first);
         let n = pair.normal;
         let [ri, rj] = self.radius;
         let slip = (velocity[ki] - velocity[kj]) - (ri * spin[ki] + rj * spin[kj]).cross(n);
         let slip = slip - slip.dot(n) * n;
-        let tangent = clamp_length(
-            held.tangent - slip * self.tangent_mass,
-            self.friction * normal_impulse,
-        );
-        let relative_spin = spin[ki] - spin[kj];
-        let rolling = clamp_length(
-            held.rolling - relative_spin * self.rolling_mass,
-            self.rolling_arm * normal_impulse,
-        );
+        let tangent = clamp_length(held.tangent - slip * self.tangent_mass, limit);
+        let rolling = if self.rolling_arm > 0.0 {
+            let relative_spin = spin[ki] - spin[kj];
+            clamp_length(
+                held.rolling - relative_spin * self.rolling_mass,
+                self.rolling_arm * normal_impulse,
+            )
+        } else {
+            DVec3::ZERO
+        };
         let change = FrictionImpulse {
             tangent: tangent - held.tangent,
             rolling: rolling - held.rolling,

@@ -128,7 +128,10 @@ pub(crate) fn solve_predict(step: &mut StepContext, hand: &(dyn Fn(&mut Pair, &B
     for _ in 0..iterations {
         contacts.sweep_wall_rows(bodies.balls);
         contacts.sweep_rows(bodies.balls);
-        contacts.sweep_tumblers(bodies, |c, bodies| bodies.solve_normal(c, target(c)));
+        contacts.sweep_tumblers(bodies, |c, bodies| {
+            bodies.solve_normal(c, target(c));
+            bodies.solve_friction(c);
+        });
     }
     contacts.keep_wall_impulses(|_| true);
     // The project stage asks about the balls of contacts that pushed
@@ -318,6 +321,7 @@ pub(crate) fn solve_project(step: &mut StepContext) {
         contacts.sweep_tumblers(bodies, |c, bodies| {
             if c.pushed > 0.0 {
                 bodies.solve_normal(c, 0.0);
+                bodies.solve_friction(c);
             }
         });
     }

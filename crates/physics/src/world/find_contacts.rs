@@ -220,14 +220,17 @@ impl World {
                         let closing = (balls.velocity[bi] - t.point_velocity(c)).length() * dt;
                         if gap < closing.min(reach_cap) + TOUCH_SLOP && dist > 0.0 {
                             let n = d / dist;
-                            contacts.tumbler_contacts.push(Contact::new(
+                            let mut contact = Contact::new(
                                 BodyRef::Ball(bi),
                                 BodyRef::Tumbler(ti, si),
                                 n,
                                 c + n * s.radius,
                                 gap,
                                 cfg.tumblers.restitution,
-                            ));
+                            );
+                            // The ball's friction rules (see `tumbler_friction`).
+                            contact.friction = cfg.balls.friction;
+                            contacts.tumbler_contacts.push(contact);
                         }
                     }
                 },
