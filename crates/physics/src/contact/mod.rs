@@ -48,8 +48,8 @@ pub(crate) mod warm;
 pub(crate) use bands::PARALLEL_PAIRS;
 use bands::{by_band_with_own_part, in_four_streams, sweep_bands, sweep_bands_of_two};
 pub(crate) use crowd::Crowd;
-use pair_friction::FrictionRow;
 pub(crate) use pair_friction::{FrictionImpulse, PairMaterial};
+use pair_friction::{Levers, Motion, RollingRow};
 pub(crate) use stages::{StepContext, solve_predict, solve_project};
 pub(crate) use tumbler_friction::TangentRows;
 use wall_rows::WallRows;
@@ -264,10 +264,11 @@ struct RowBand {
     /// The impulses the predict stage ended with, one per pair of the band,
     /// kept for the recording as the step ends.
     predicted: Vec<f64>,
-    /// Where the pairs have friction, each row's friction and rolling rows
-    /// (see [`pair_friction`]), else none; and what they have accumulated.
-    friction: Vec<FrictionRow>,
+    /// Where the pairs have friction, what each row's friction has
+    /// accumulated (see [`pair_friction`]), else none; and where they have
+    /// rolling resistance, each row's rolling row, else none.
     friction_impulses: Vec<FrictionImpulse>,
+    rolling: Vec<RollingRow>,
     /// The friction impulses the predict stage ended with, kept as
     /// `predicted`.
     friction_predicted: Vec<FrictionImpulse>,
@@ -321,6 +322,8 @@ pub(crate) struct Contacts {
     wall_rows: WallRows,
     /// Per band, the pairs picked by [`Contacts::copy_pairs_where`].
     picked: Vec<Vec<Pair>>,
+    /// What the pairs' friction rows read of each ball (see [`Levers`]).
+    levers: Levers,
 }
 
 impl Contacts {
@@ -422,28 +425,39 @@ impl Contacts {
         F: Fn(&mut Pair) -> Option<RowStart> + Sync,
     {
         self.rows.resize_with(self.bands.len(), RowBand::default);
+        if material.any() {
+            self.levers.update(balls, material);
+        }
         let inv_mass = &balls.inv_mass;
+        let rolls = material.rolling_resistance > 0.0;
         let build = |(band, rows): (&mut Vec<Pair>, &mut RowBand)| {
             rows.rows.clear();
             rows.impulses.clear();
-            rows.friction.clear();
             rows.friction_impulses.clear();
+            rows.rolling.clear();
             for p in band {
                 let Some(start) = row(p) else {
                     continue;
                 };
-                let pair_row = PairRow::new(p, inv_mass, start.target);
                 if let Some(kept) = start.friction {
                     let (i, j) = (p.i as usize, p.j as usize);
-                    let friction = FrictionRow::new(i, j, balls, material);
-                    let held = FrictionImpulse::starting(kept, p.normal, start.impulse, &friction);
-                    rows.friction.push(friction);
-                    rows.friction_impulses.push(held);
+                    let rolling = rolls.then(|| RollingRow::new(i, j, balls, material));
+                    rows.friction_impulses.push(FrictionImpulse::starting(
+                        kept,
+                        p.normal,
+                        start.impulse,
+                        material.friction,
+                        rolling.as_ref(),
+                    ));
+                    rows.rolling.extend(rolling);
                 }
-                rows.rows.push(pair_row);
+                rows.rows.push(PairRow::new(p, inv_mass, start.target));
                 rows.impulses.push(start.impulse);
             }
-            debug_assert!(rows.friction.is_empty() || rows.friction.len() == rows.rows.len());
+            debug_assert!(
+                rows.friction_impulses.is_empty()
+                    || rows.friction_impulses.len() == rows.rows.len()
+            );
         };
         if self.pair_count() >= PARALLEL_PAIRS {
             self.bands
@@ -457,20 +471,29 @@ impl Contacts {
 
     /// Whether any band's rows have friction rows.
     fn rows_have_friction(&self) -> bool {
-        self.rows.iter().any(|band| !band.friction.is_empty())
+        self.rows
+            .iter()
+            .any(|band| !band.friction_impulses.is_empty())
     }
 
     /// Applies the rows' starting impulses to the balls.
     fn start_rows(&mut self, balls: &mut Balls) {
         let inv_mass = &balls.inv_mass;
         if self.rows_have_friction() {
+            let levers = &self.levers;
             let start = |band: &mut RowBand, velocity: &mut [DVec3], spin: &mut [DVec3], first| {
-                let friction = band.friction.iter().zip(&band.friction_impulses);
-                for ((r, &impulse), (f, held)) in band.rows.iter().zip(&band.impulses).zip(friction)
-                {
+                let mut motion = Motion {
+                    velocity,
+                    spin,
+                    first,
+                    inv_mass,
+                    levers,
+                };
+                for (k, (r, &impulse)) in band.rows.iter().zip(&band.impulses).enumerate() {
                     if impulse > 0.0 {
-                        r.push(velocity, first, inv_mass, impulse);
-                        f.push(r, held, (&mut *velocity, &mut *spin), first, inv_mass);
+                        r.push(motion.velocity, first, inv_mass, impulse);
+                        let rolling = band.rolling.get(k);
+                        motion.push(r, &band.friction_impulses[k], rolling);
                     }
                 }
             };
@@ -492,29 +515,29 @@ impl Contacts {
     fn sweep_rows(&mut self, balls: &mut Balls) {
         let inv_mass = &balls.inv_mass;
         if self.rows_have_friction() {
+            let levers = &self.levers;
             let solve = |band: &mut RowBand, velocity: &mut [DVec3], spin: &mut [DVec3], first| {
                 let RowBand {
                     rows,
                     impulses,
-                    friction,
                     friction_impulses,
+                    rolling,
                     ..
                 } = band;
+                let mut motion = Motion {
+                    velocity,
+                    spin,
+                    first,
+                    inv_mass,
+                    levers,
+                };
                 in_four_streams(
                     rows.len(),
                     #[inline(always)]
                     |k| {
                         let r = &rows[k];
-                        r.solve(&mut impulses[k], velocity, first, inv_mass);
-                        let slots = (&mut *velocity, &mut *spin);
-                        friction[k].solve(
-                            r,
-                            impulses[k],
-                            &mut friction_impulses[k],
-                            slots,
-                            first,
-                            inv_mass,
-                        );
+                        r.solve(&mut impulses[k], motion.velocity, first, inv_mass);
+                        motion.solve(r, impulses[k], &mut friction_impulses[k], rolling.get(k));
                     },
                 );
             };

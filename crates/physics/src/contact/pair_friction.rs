@@ -1,12 +1,13 @@
 //! Friction and rolling resistance between two balls in contact, as rows
-//! of the predict stage beside each pair's normal row (F1).
+//! of both solver stages beside each pair's normal row (F1).
 //!
 //! Friction acts at the contact point against its sliding, within the
 //! Coulomb cone: the tangential impulse accumulated over the stage is kept
 //! at most `mu` times the normal one, as a vector in the tangent plane (the
 //! cone itself, not a pyramid of two tangents). For solid spheres the
 //! contact point's sliding changes along the impulse alone, by
-//! `1/m1 + r1^2/I1 + 1/m2 + r2^2/I2` per unit, so each update is one
+//! `1/m1 + r1^2/I1 + 1/m2 + r2^2/I2 = 3.5 (1/m1 + 1/m2)` per unit, so the
+//! tangent row's mass is 2/7 of the normal row's and each update is one
 //! division-free step. Rolling resistance resists the balls' relative spin
 //! with a torque of at most `mu_r` times the normal impulse times the
 //! pair's rolling radius `r1 r2 / (r1 + r2)` (Ai, Chen, Rotter and Ooi,
@@ -14,7 +15,10 @@
 //! radius is its own, feels the room's coefficient the same way.
 //!
 //! Both start from last step's impulses, so a heap's friction holds from
-//! one step to the next instead of building up anew each step.
+//! one step to the next instead of building up anew each step. A friction
+//! row reads only its impulse beside the pair's normal row, and each ball's
+//! radius and lever from arrays by slot: in a large pile the rows are
+//! streamed from memory every sweep, and that stream is much of the work.
 
 use crate::balls::{Balls, sphere_inertia};
 use glam::DVec3;
@@ -37,20 +41,59 @@ impl PairMaterial {
     }
 }
 
-/// A pair's friction and rolling rows: what an iteration reads beside
-/// the pair's [`PairRow`].
+/// The tangent row's mass per unit of the normal row's (see above).
+const TANGENT_MASS_SHARE: f64 = 2.0 / 7.0;
+
+/// Per slot, what the friction rows read of each ball: its radius, and the
+/// spin a unit impulse along its surface gives it, `r / I`.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Levers {
+    pub friction: f64,
+    radius: Vec<f64>,
+    turn: Vec<f64>,
+}
+
+impl Levers {
+    /// Worked out for `balls` and `material`, storage kept.
+    pub fn update(&mut self, balls: &Balls, material: PairMaterial) {
+        self.friction = material.friction;
+        self.radius.clear();
+        self.radius.extend_from_slice(&balls.radius);
+        self.turn.clear();
+        self.turn
+            .extend((0..balls.len()).map(|k| inv_inertia(balls, k) * balls.radius[k]));
+    }
+}
+
+/// Ball `k`'s inverse moment of inertia (0 for a ball that cannot move).
+fn inv_inertia(balls: &Balls, k: usize) -> f64 {
+    if balls.inv_mass[k] > 0.0 {
+        1.0 / sphere_inertia(balls.mass[k], balls.radius[k])
+    } else {
+        0.0
+    }
+}
+
+/// A pair's rolling row, where the balls have rolling resistance.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct FrictionRow {
-    /// The two balls' radii and inverse moments of inertia.
-    radius: [f64; 2],
+pub(super) struct RollingRow {
     inv_inertia: [f64; 2],
-    /// Mass along a tangent at the contact point.
-    tangent_mass: f64,
     /// Moment of inertia against relative spin.
-    rolling_mass: f64,
-    friction: f64,
+    mass: f64,
     /// The largest rolling torque impulse per unit normal impulse.
-    rolling_arm: f64,
+    arm: f64,
+}
+
+impl RollingRow {
+    pub fn new(i: usize, j: usize, balls: &Balls, material: PairMaterial) -> RollingRow {
+        let (ii, ij) = (inv_inertia(balls, i), inv_inertia(balls, j));
+        let (ri, rj) = (balls.radius[i], balls.radius[j]);
+        RollingRow {
+            inv_inertia: [ii, ij],
+            mass: if ii + ij > 0.0 { 1.0 / (ii + ij) } else { 0.0 },
+            arm: material.rolling_resistance * ri * rj / (ri + rj),
+        }
+    }
 }
 
 /// A pair's accumulated friction impulse (on the first ball, in the
@@ -69,12 +112,14 @@ impl FrictionImpulse {
         kept: FrictionImpulse,
         normal: DVec3,
         normal_impulse: f64,
-        row: &FrictionRow,
+        friction: f64,
+        rolling: Option<&RollingRow>,
     ) -> FrictionImpulse {
         let tangent = kept.tangent - kept.tangent.dot(normal) * normal;
+        let arm = rolling.map_or(0.0, |r| r.arm);
         FrictionImpulse {
-            tangent: clamp_length(tangent, row.friction * normal_impulse),
-            rolling: clamp_length(kept.rolling, row.rolling_arm * normal_impulse),
+            tangent: clamp_length(tangent, friction * normal_impulse),
+            rolling: clamp_length(kept.rolling, arm * normal_impulse),
         }
     }
 }
@@ -90,92 +135,81 @@ fn clamp_length(v: DVec3, limit: f64) -> DVec3 {
     }
 }
 
-impl FrictionRow {
-    pub fn new(i: usize, j: usize, balls: &Balls, material: PairMaterial) -> FrictionRow {
-        let (ri, rj) = (balls.radius[i], balls.radius[j]);
-        let inv_inertia = |k: usize| {
-            let w = balls.inv_mass[k];
-            if w > 0.0 {
-                1.0 / sphere_inertia(balls.mass[k], balls.radius[k])
-            } else {
-                0.0
-            }
-        };
-        let (ii, ij) = (inv_inertia(i), inv_inertia(j));
-        let k_tangent = balls.inv_mass[i] + balls.inv_mass[j] + ri * ri * ii + rj * rj * ij;
-        let k_rolling = ii + ij;
-        let inverse = |k: f64| if k > 0.0 { 1.0 / k } else { 0.0 };
-        FrictionRow {
-            radius: [ri, rj],
-            inv_inertia: [ii, ij],
-            tangent_mass: inverse(k_tangent),
-            rolling_mass: inverse(k_rolling),
-            friction: material.friction,
-            rolling_arm: material.rolling_resistance * ri * rj / (ri + rj),
+/// The balls' velocities and spins from slot `first` on, and what every
+/// slot's ball weighs and turns by.
+pub(super) struct Motion<'a> {
+    pub velocity: &'a mut [DVec3],
+    pub spin: &'a mut [DVec3],
+    pub first: usize,
+    pub inv_mass: &'a [f64],
+    pub levers: &'a Levers,
+}
+
+impl Motion<'_> {
+    /// Applies `impulse` (of friction, and of rolling torque) to the two
+    /// balls of `pair`.
+    #[inline(always)]
+    pub fn push(
+        &mut self,
+        pair: &PairRow,
+        impulse: &FrictionImpulse,
+        rolling: Option<&RollingRow>,
+    ) {
+        let (i, j) = (pair.i as usize, pair.j as usize);
+        let (ki, kj) = (i - self.first, j - self.first);
+        let t = impulse.tangent;
+        self.velocity[ki] += t * self.inv_mass[i];
+        self.velocity[kj] -= t * self.inv_mass[j];
+        // On i at -ri n, the opposite on j at +rj n: both turn against n x t.
+        let turn = pair.normal.cross(t);
+        self.spin[ki] -= turn * self.levers.turn[i];
+        self.spin[kj] -= turn * self.levers.turn[j];
+        if let Some(r) = rolling {
+            self.spin[ki] += impulse.rolling * r.inv_inertia[0];
+            self.spin[kj] -= impulse.rolling * r.inv_inertia[1];
         }
     }
 
-    /// Applies `impulse` (of friction, and of rolling torque) to the two
-    /// balls of `pair`: slots from `first` on.
-    #[inline(always)]
-    pub fn push(
-        &self,
-        pair: &PairRow,
-        impulse: &FrictionImpulse,
-        (velocity, spin): (&mut [DVec3], &mut [DVec3]),
-        first: usize,
-        inv_mass: &[f64],
-    ) {
-        let (i, j) = (pair.i as usize, pair.j as usize);
-        let (ki, kj) = (i - first, j - first);
-        let t = impulse.tangent;
-        velocity[ki] += t * inv_mass[i];
-        velocity[kj] -= t * inv_mass[j];
-        // On i at -ri n, the opposite on j at +rj n: both turn against n x t.
-        let turn = pair.normal.cross(t);
-        spin[ki] +=
-            impulse.rolling * self.inv_inertia[0] - turn * (self.radius[0] * self.inv_inertia[0]);
-        spin[kj] -=
-            impulse.rolling * self.inv_inertia[1] + turn * (self.radius[1] * self.inv_inertia[1]);
-    }
-
-    /// One Gauss-Seidel update of the pair's friction and rolling rows,
-    /// their limits set by the pair's accumulated `normal_impulse`.
+    /// One Gauss-Seidel update of the pair's friction row, and its rolling
+    /// row if it has one, their limits set by the pair's accumulated
+    /// `normal_impulse`.
     #[inline(always)]
     pub fn solve(
-        &self,
+        &mut self,
         pair: &PairRow,
         normal_impulse: f64,
         held: &mut FrictionImpulse,
-        (velocity, spin): (&mut [DVec3], &mut [DVec3]),
-        first: usize,
-        inv_mass: &[f64],
+        rolling: Option<&RollingRow>,
     ) {
-        let limit = self.friction * normal_impulse;
-        if limit == 0.0 && self.rolling_arm == 0.0 && held.tangent == DVec3::ZERO {
+        let limit = self.levers.friction * normal_impulse;
+        if limit == 0.0 && rolling.is_none() && held.tangent == DVec3::ZERO {
             // Nothing to hold and nothing held: a speculative contact.
             return;
         }
-        let (ki, kj) = (pair.i as usize - first, pair.j as usize - first);
+        let (i, j) = (pair.i as usize, pair.j as usize);
+        let (ki, kj) = (i - self.first, j - self.first);
         let n = pair.normal;
-        let [ri, rj] = self.radius;
-        let slip = (velocity[ki] - velocity[kj]) - (ri * spin[ki] + rj * spin[kj]).cross(n);
+        let (ri, rj) = (self.levers.radius[i], self.levers.radius[j]);
+        let (spin_i, spin_j) = (self.spin[ki], self.spin[kj]);
+        let slip = (self.velocity[ki] - self.velocity[kj]) - (ri * spin_i + rj * spin_j).cross(n);
         let slip = slip - slip.dot(n) * n;
-        let tangent = clamp_length(held.tangent - slip * self.tangent_mass, limit);
-        let rolling = if self.rolling_arm > 0.0 {
-            let relative_spin = spin[ki] - spin[kj];
-            clamp_length(
-                held.rolling - relative_spin * self.rolling_mass,
-                self.rolling_arm * normal_impulse,
-            )
-        } else {
-            DVec3::ZERO
+        let mass = TANGENT_MASS_SHARE * pair.mass;
+        let tangent = clamp_length(held.tangent - slip * mass, limit);
+        let rolling_held = match rolling {
+            Some(r) => clamp_length(
+                held.rolling - (spin_i - spin_j) * r.mass,
+                r.arm * normal_impulse,
+            ),
+            None => DVec3::ZERO,
         };
         let change = FrictionImpulse {
             tangent: tangent - held.tangent,
-            rolling: rolling - held.rolling,
+            rolling: rolling_held - held.rolling,
         };
-        *held = FrictionImpulse { tangent, rolling };
-        self.push(pair, &change, (velocity, spin), first, inv_mass);
+        *held = FrictionImpulse {
+            tangent,
+            rolling: rolling_held,
+        };
+        self.push(pair, &change, rolling);
     }
 }
