@@ -196,12 +196,18 @@ fn a_spinning_ball_throws_a_tumbler_and_is_thrown_off_it() {
     // The contact point of the ball slides along -z: friction sends the
     // ball along +z and the tumbler's top along -z, more with more friction.
     let (ball_0, top_0) = spinning_ball_on_a_tumbler(0.0);
-    assert!(ball_0.abs() < 1e-9 && top_0.abs() < 1e-9, "{ball_0} {top_0}");
+    assert!(
+        ball_0.abs() < 1e-9 && top_0.abs() < 1e-9,
+        "{ball_0} {top_0}"
+    );
     let mut last = 0.0;
     for mu in [0.1, 0.4] {
         let (ball, top) = spinning_ball_on_a_tumbler(mu);
         println!("mu {mu}: ball {ball:.3} m/s, tumbler's top {top:.3} m/s");
-        assert!(ball > last + 0.05, "mu {mu}: the ball is thrown at {ball} m/s");
+        assert!(
+            ball > last + 0.05,
+            "mu {mu}: the ball is thrown at {ball} m/s"
+        );
         assert!(top < -0.01, "mu {mu}: the tumbler's top moves at {top} m/s");
         last = ball;
     }
