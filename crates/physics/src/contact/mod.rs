@@ -512,9 +512,10 @@ impl Contacts {
     }
 
     /// One Gauss-Seidel sweep over the rows (see [`sweep_bands`]).
-    fn sweep_rows(&mut self, balls: &mut Balls) {
+    /// The rows' friction rows are solved too if `friction`.
+    fn sweep_rows(&mut self, balls: &mut Balls, friction: bool) {
         let inv_mass = &balls.inv_mass;
-        if self.rows_have_friction() {
+        if friction && self.rows_have_friction() {
             let levers = &self.levers;
             let solve = |band: &mut RowBand, velocity: &mut [DVec3], spin: &mut [DVec3], first| {
                 let RowBand {
