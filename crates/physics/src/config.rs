@@ -73,8 +73,8 @@ pub struct BallsConfig {
     /// Coulomb friction coefficient between two balls, and between a ball
     /// and a tumbler (see docs/physics.md on which coefficient rules a pair).
     pub friction: f64,
-    /// Rolling resistance between two balls, and between a ball and a
-    /// tumbler: the resisting torque is this times the normal force times
+    /// Rolling resistance between two balls (not between a ball and a
+    /// tumbler): the resisting torque is this times the normal force times
     /// the pair's rolling radius (r1 r2 / (r1 + r2)), the room's coefficient
     /// for a ball on a wall, where the rolling radius is the ball's.
     pub rolling_resistance: f64,

@@ -224,7 +224,7 @@ pub static KEYS: &[Key] = &[
         Real(place!(world.room.rolling_resistance)),
         Within(UNIT),
         NextStep,
-        Slider("rolling resistance", 0.0, 0.2),
+        Slider("wall rolling resistance", 0.0, 0.2),
         "A rolling ball's deceleration as a share of its normal acceleration.",
     ),
     key_of(
@@ -415,7 +415,7 @@ pub static KEYS: &[Key] = &[
         Within(UNIT),
         NextStep,
         Slider("ball rolling resistance", 0.0, 0.2),
-        "As room.rolling_resistance, for a ball rolling on another ball or a tumbler.",
+        "As room.rolling_resistance, for a ball rolling on another ball (not on a tumbler).",
     ),
     key_of(
         "balls.speed_min",
