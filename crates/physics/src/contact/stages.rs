@@ -314,7 +314,7 @@ pub(crate) fn solve_project(step: &mut StepContext) {
     // friction, the floor's friction holds them here too: else a heap's
     // weight, spread by the normal rows, would slide its foot outwards.
     let restitution = bodies.wall_restitution;
-    let wall_friction = if ball_material.any() {
+    let wall_friction = if ball_material.friction > 0.0 {
         bodies.wall_friction
     } else {
         0.0
