@@ -147,6 +147,15 @@ impl Balls {
         sphere_inertia(self.mass[i], self.radius[i])
     }
 
+    /// Inverse moment of inertia of ball `i` (0 for a ball that cannot move).
+    pub(crate) fn inv_inertia(&self, i: usize) -> f64 {
+        if self.inv_mass[i] > 0.0 {
+            1.0 / self.inertia(i)
+        } else {
+            0.0
+        }
+    }
+
     /// Kinetic energy of ball `i`, moving and spinning (J).
     pub fn kinetic_energy(&self, i: usize) -> f64 {
         0.5 * self.mass[i] * self.velocity[i].length_squared()

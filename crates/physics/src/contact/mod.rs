@@ -48,8 +48,8 @@ pub(crate) mod warm;
 pub(crate) use bands::PARALLEL_PAIRS;
 use bands::{by_band_with_own_part, in_four_streams, sweep_bands, sweep_bands_of_two};
 pub(crate) use crowd::Crowd;
+use pair_friction::{BallBuild, Levers, Motion, RollingRow};
 pub(crate) use pair_friction::{FrictionImpulse, PairMaterial};
-use pair_friction::{Levers, Motion, RollingRow};
 pub(crate) use stages::{StepContext, solve_predict, solve_project};
 pub(crate) use tumbler_friction::TangentRows;
 use wall_rows::WallRows;
@@ -480,14 +480,13 @@ impl Contacts {
     fn start_rows(&mut self, balls: &mut Balls) {
         let inv_mass = &balls.inv_mass;
         if self.rows_have_friction() {
-            let levers = &self.levers;
+            let build = BallBuild::new(inv_mass, &balls.radius, &self.levers);
             let start = |band: &mut RowBand, velocity: &mut [DVec3], spin: &mut [DVec3], first| {
                 let mut motion = Motion {
                     velocity,
                     spin,
                     first,
-                    inv_mass,
-                    levers,
+                    build,
                 };
                 for (k, (r, &impulse)) in band.rows.iter().zip(&band.impulses).enumerate() {
                     if impulse > 0.0 {
@@ -516,7 +515,7 @@ impl Contacts {
     fn sweep_rows(&mut self, balls: &mut Balls, friction: bool) {
         let inv_mass = &balls.inv_mass;
         if friction && self.rows_have_friction() {
-            let levers = &self.levers;
+            let build = BallBuild::new(inv_mass, &balls.radius, &self.levers);
             let solve = |band: &mut RowBand, velocity: &mut [DVec3], spin: &mut [DVec3], first| {
                 let RowBand {
                     rows,
@@ -529,8 +528,7 @@ impl Contacts {
                     velocity,
                     spin,
                     first,
-                    inv_mass,
-                    levers,
+                    build,
                 };
                 in_four_streams(
                     rows.len(),
@@ -594,21 +592,24 @@ impl Contacts {
             .any(|band| !band.friction_predicted.is_empty());
         if friction {
             // The project stage's, which only the pairs that pushed have.
-            for (band, rows) in self.bands.iter().zip(&mut self.rows) {
-                let mut project = rows.friction_impulses.iter();
-                let both = band
-                    .iter()
-                    .zip(&rows.friction_predicted)
-                    .map(|(p, &predicted)| {
-                        let project = if p.pushed {
-                            project.next().copied()
-                        } else {
-                            None
-                        };
-                        [predicted, project.unwrap_or_default()]
-                    });
-                rows.friction_recorded.clear();
-                rows.friction_recorded.extend(both);
+            let gather = |(band, rows): (&Vec<Pair>, &mut RowBand)| {
+                let RowBand {
+                    friction_impulses,
+                    friction_predicted,
+                    friction_recorded,
+                    ..
+                } = rows;
+                let mut project = friction_impulses.iter();
+                let both = band.iter().zip(friction_predicted.iter());
+                friction_recorded.clear();
+                friction_recorded.extend(
+                    both.map(|(p, &predicted)| [predicted, next_impulse(p.pushed, &mut project)]),
+                );
+            };
+            if self.pair_count() >= PARALLEL_PAIRS {
+                self.bands.par_iter().zip(&mut self.rows).for_each(gather);
+            } else {
+                self.bands.iter().zip(&mut self.rows).for_each(gather);
             }
         }
         let rows = &self.rows;
@@ -628,11 +629,11 @@ impl Contacts {
 
 /// The impulse of a band's next pair: its row's, the next of `rows`, if
 /// it has one.
-fn next_impulse(has_row: bool, rows: &mut std::slice::Iter<f64>) -> f64 {
+fn next_impulse<T: Copy + Default>(has_row: bool, rows: &mut std::slice::Iter<T>) -> T {
     if has_row {
-        rows.next().copied().unwrap_or(0.0)
+        rows.next().copied().unwrap_or_default()
     } else {
-        0.0
+        T::default()
     }
 }
 

@@ -20,7 +20,7 @@
 //! radius and lever from arrays by slot: in a large pile the rows are
 //! streamed from memory every sweep, and that stream is much of the work.
 
-use crate::balls::{Balls, sphere_inertia};
+use crate::balls::Balls;
 use glam::DVec3;
 
 use super::PairRow;
@@ -44,12 +44,11 @@ impl PairMaterial {
 /// The tangent row's mass per unit of the normal row's (see above).
 const TANGENT_MASS_SHARE: f64 = 2.0 / 7.0;
 
-/// Per slot, what the friction rows read of each ball: its radius, and the
-/// spin a unit impulse along its surface gives it, `r / I`.
+/// Per slot, the spin a unit impulse along a ball's surface gives it,
+/// `r / I`, and the friction coefficient the rows hold to.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Levers {
     pub friction: f64,
-    radius: Vec<f64>,
     turn: Vec<f64>,
 }
 
@@ -57,20 +56,9 @@ impl Levers {
     /// Worked out for `balls` and `material`, storage kept.
     pub fn update(&mut self, balls: &Balls, material: PairMaterial) {
         self.friction = material.friction;
-        self.radius.clear();
-        self.radius.extend_from_slice(&balls.radius);
         self.turn.clear();
         self.turn
-            .extend((0..balls.len()).map(|k| inv_inertia(balls, k) * balls.radius[k]));
-    }
-}
-
-/// Ball `k`'s inverse moment of inertia (0 for a ball that cannot move).
-fn inv_inertia(balls: &Balls, k: usize) -> f64 {
-    if balls.inv_mass[k] > 0.0 {
-        1.0 / sphere_inertia(balls.mass[k], balls.radius[k])
-    } else {
-        0.0
+            .extend((0..balls.len()).map(|k| balls.inv_inertia(k) * balls.radius[k]));
     }
 }
 
@@ -86,7 +74,7 @@ pub(super) struct RollingRow {
 
 impl RollingRow {
     pub fn new(i: usize, j: usize, balls: &Balls, material: PairMaterial) -> RollingRow {
-        let (ii, ij) = (inv_inertia(balls, i), inv_inertia(balls, j));
+        let (ii, ij) = (balls.inv_inertia(i), balls.inv_inertia(j));
         let (ri, rj) = (balls.radius[i], balls.radius[j]);
         RollingRow {
             inv_inertia: [ii, ij],
@@ -135,14 +123,32 @@ fn clamp_length(v: DVec3, limit: f64) -> DVec3 {
     }
 }
 
+/// What the friction rows read of every slot's ball, unchanged by them:
+/// its inverse mass, radius and lever.
+#[derive(Clone, Copy)]
+pub(super) struct BallBuild<'a> {
+    pub inv_mass: &'a [f64],
+    pub radius: &'a [f64],
+    pub levers: &'a Levers,
+}
+
+impl<'a> BallBuild<'a> {
+    pub fn new(inv_mass: &'a [f64], radius: &'a [f64], levers: &'a Levers) -> BallBuild<'a> {
+        BallBuild {
+            inv_mass,
+            radius,
+            levers,
+        }
+    }
+}
+
 /// The balls' velocities and spins from slot `first` on, and what every
-/// slot's ball weighs and turns by.
+/// slot's ball is built of.
 pub(super) struct Motion<'a> {
     pub velocity: &'a mut [DVec3],
     pub spin: &'a mut [DVec3],
     pub first: usize,
-    pub inv_mass: &'a [f64],
-    pub levers: &'a Levers,
+    pub build: BallBuild<'a>,
 }
 
 impl Motion<'_> {
@@ -158,12 +164,15 @@ impl Motion<'_> {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let (ki, kj) = (i - self.first, j - self.first);
         let t = impulse.tangent;
-        self.velocity[ki] += t * self.inv_mass[i];
-        self.velocity[kj] -= t * self.inv_mass[j];
+        let BallBuild {
+            inv_mass, levers, ..
+        } = self.build;
+        self.velocity[ki] += t * inv_mass[i];
+        self.velocity[kj] -= t * inv_mass[j];
         // On i at -ri n, the opposite on j at +rj n: both turn against n x t.
         let turn = pair.normal.cross(t);
-        self.spin[ki] -= turn * self.levers.turn[i];
-        self.spin[kj] -= turn * self.levers.turn[j];
+        self.spin[ki] -= turn * levers.turn[i];
+        self.spin[kj] -= turn * levers.turn[j];
         if let Some(r) = rolling {
             self.spin[ki] += impulse.rolling * r.inv_inertia[0];
             self.spin[kj] -= impulse.rolling * r.inv_inertia[1];
@@ -181,7 +190,7 @@ impl Motion<'_> {
         held: &mut FrictionImpulse,
         rolling: Option<&RollingRow>,
     ) {
-        let limit = self.levers.friction * normal_impulse;
+        let limit = self.build.levers.friction * normal_impulse;
         if limit == 0.0 && rolling.is_none() && held.tangent == DVec3::ZERO {
             // Nothing to hold and nothing held: a speculative contact.
             return;
@@ -189,7 +198,7 @@ impl Motion<'_> {
         let (i, j) = (pair.i as usize, pair.j as usize);
         let (ki, kj) = (i - self.first, j - self.first);
         let n = pair.normal;
-        let (ri, rj) = (self.levers.radius[i], self.levers.radius[j]);
+        let (ri, rj) = (self.build.radius[i], self.build.radius[j]);
         let (spin_i, spin_j) = (self.spin[ki], self.spin[kj]);
         let slip = (self.velocity[ki] - self.velocity[kj]) - (ri * spin_i + rj * spin_j).cross(n);
         let slip = slip - slip.dot(n) * n;

@@ -8,7 +8,6 @@
 //! is its response to an impulse there, rolling or sliding on the floor as
 //! it is (see [`crate::Tumbler`]), as for the normal row.
 
-use crate::balls::sphere_inertia;
 use crate::tumbler::Response;
 use glam::DVec3;
 
@@ -37,8 +36,7 @@ impl Bodies<'_> {
         }
         let (t1, t2) = c.normal.any_orthonormal_pair();
         let arm = c.point - self.balls.position[i];
-        let (mass, radius) = (self.balls.mass[i], self.balls.radius[i]);
-        let inv_inertia = 1.0 / sphere_inertia(mass, radius);
+        let inv_inertia = self.balls.inv_inertia(i);
         for (k, t) in [t1, t2].into_iter().enumerate() {
             let ball = self.balls.inv_mass[i] + arm.cross(t).length_squared() * inv_inertia;
             let (tumbler, response) = self.response(c.b, c.point, t);
@@ -60,8 +58,7 @@ impl Bodies<'_> {
             return;
         }
         let arm = c.point - self.balls.position[i];
-        let (mass, radius) = (self.balls.mass[i], self.balls.radius[i]);
-        let inv_inertia = 1.0 / sphere_inertia(mass, radius);
+        let inv_inertia = self.balls.inv_inertia(i);
         for k in 0..2 {
             let t = c.slide.tangents[k];
             let ball = self.balls.velocity[i] + self.balls.spin[i].cross(arm);
