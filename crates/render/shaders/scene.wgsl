@@ -155,6 +155,9 @@ fn shadow_face(d: vec3<f32>) -> i32 {
     return select(5, 4, d.z > 0.0);
 }
 
+// Shadow filter taps along each side (the quality level's; see quality.rs).
+override SHADOW_TAPS: i32 = 4;
+
 // 1 where the light reaches the point, 0 in shadow, soft in between.
 fn light_visibility(world: vec3<f32>, normal: vec3<f32>) -> f32 {
     if globals.shadow.x < 0.5 {
@@ -171,15 +174,19 @@ fn light_visibility(world: vec3<f32>, normal: vec3<f32>) -> f32 {
     let ndc = clip.xyz / clip.w;
     let uv = vec2<f32>(ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5);
     let reference = ndc.z - globals.shadow.z;
-    // 4 x 4 taps, each a bilinear 2 x 2 comparison: soft edges.
+    // SHADOW_TAPS x SHADOW_TAPS taps spread over the same square, each a
+    // bilinear 2 x 2 comparison: soft edges.
+    let taps = max(SHADOW_TAPS, 1);
+    let spacing = texel * 3.6 / f32(max(taps - 1, 1));
+    let middle = 0.5 * f32(taps - 1);
     var lit = 0.0;
-    for (var y = 0; y < 4; y++) {
-        for (var x = 0; x < 4; x++) {
-            let offset = (vec2<f32>(f32(x), f32(y)) - 1.5) * texel * 1.2;
+    for (var y = 0; y < taps; y++) {
+        for (var x = 0; x < taps; x++) {
+            let offset = (vec2<f32>(f32(x), f32(y)) - middle) * spacing;
             lit += textureSampleCompareLevel(shadow_map, shadow_sampler, uv + offset, face, reference);
         }
     }
-    return lit / 16.0;
+    return lit / f32(taps * taps);
 }
 
 // --- passes ----------------------------------------------------------------

@@ -9,6 +9,9 @@ struct Params {
     // (0: no bloom); z: occlusion on (1) or off (0); w: the bloom's chain
     // has a second level (1) or not (0).
     values: vec4<f32>,
+    // xy: the output's size in pixels; z: the scene was lit at a lower
+    // resolution than the output (1) or at the same (0).
+    output: vec4<f32>,
 };
 @group(0) @binding(1) var<uniform> params: Params;
 @group(0) @binding(2) var glow: texture_2d<f32>;
@@ -28,10 +31,8 @@ fn aces(x: vec3<f32>) -> vec3<f32> {
 // The occlusion, blurred over about 4 x 4 of its half-resolution texels:
 // four bilinear taps, each the mean of 2 x 2, which smooths away the
 // pattern each pixel turned by its own angle.
-fn open_at(position: vec2<f32>) -> f32 {
-    let size = vec2<f32>(textureDimensions(hdr));
-    let texel = 2.0 / size;
-    let uv = position / size;
+fn open_at(uv: vec2<f32>) -> f32 {
+    let texel = 2.0 / vec2<f32>(textureDimensions(hdr));
     var sum = 0.0;
     for (var k = 0; k < 4; k++) {
         let corner = vec2<f32>(f32(k & 1), f32(k >> 1u)) * 2.0 - 1.0;
@@ -42,8 +43,7 @@ fn open_at(position: vec2<f32>) -> f32 {
 
 // The bloom's glow: its chain's top level, and the second, which holds the
 // sum of all below it (see bloom.rs), spread smoothly from its smaller image.
-fn glow_at(position: vec2<f32>) -> vec3<f32> {
-    let uv = position / vec2<f32>(textureDimensions(hdr));
+fn glow_at(uv: vec2<f32>) -> vec3<f32> {
     var sum = textureSampleLevel(glow, smooth_sampler, uv, 0.0).rgb;
     if params.values.w > 0.5 {
         sum += textureSampleLevel(glow, smooth_sampler, uv, 1.0).rgb;
@@ -53,12 +53,18 @@ fn glow_at(position: vec2<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let uv = position.xy / params.output.xy;
+    // At the same resolution each pixel reads its own; at a lower one the
+    // filter spreads the scene over the output's pixels.
     var color = textureLoad(hdr, vec2<i32>(position.xy), 0).rgb;
+    if params.output.z > 0.5 {
+        color = textureSampleLevel(hdr, smooth_sampler, uv, 0.0).rgb;
+    }
     if params.values.z > 0.5 {
-        color *= open_at(position.xy);
+        color *= open_at(uv);
     }
     if params.values.y > 0.0 {
-        color += params.values.y * glow_at(position.xy);
+        color += params.values.y * glow_at(uv);
     }
     return vec4<f32>(aces(color * params.values.x), 1.0);
 }

@@ -82,6 +82,12 @@ const _: () = assert!(std::mem::size_of::<BallInstance>() == 32);
 const _: () = assert!(std::mem::size_of::<Instance>() == 96);
 
 impl BallInstance {
+    /// Its centre and radius.
+    pub fn sphere(&self) -> (Vec3, f32) {
+        let [x, y, z, r] = self.sphere;
+        (Vec3::new(x, y, z), r)
+    }
+
     const ATTRIBUTES: [wgpu::VertexAttribute; 2] =
         wgpu::vertex_attr_array![3 => Float32x4, 4 => Float32x3];
 

@@ -40,6 +40,22 @@ pub struct MeshData {
 }
 
 impl MeshData {
+    /// A sphere that holds every corner (so every triangle): the centre of
+    /// their box and the farthest corner's distance from it.
+    pub fn bounding_sphere(&self) -> (glam::Vec3, f32) {
+        let points = self.vertices.iter().map(|v| glam::Vec3::from(v.position));
+        let (lo, hi) = points.clone().fold(
+            (glam::Vec3::splat(f32::MAX), glam::Vec3::splat(f32::MIN)),
+            |(lo, hi), p| (lo.min(p), hi.max(p)),
+        );
+        if self.vertices.is_empty() {
+            return (glam::Vec3::ZERO, 0.0);
+        }
+        let centre = (lo + hi) * 0.5;
+        let radius = points.map(|p| p.distance(centre)).fold(0.0, f32::max);
+        (centre, radius)
+    }
+
     /// A unit sphere (radius 1) of `rings` x `segments` quads.
     pub fn sphere(rings: u32, segments: u32) -> MeshData {
         let mut mesh = MeshData::default();

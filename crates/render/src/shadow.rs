@@ -32,6 +32,49 @@ pub fn face_view_projections(light: Vec3) -> [Mat4; 6] {
     FACES.map(|(dir, up)| projection * glam::camera::rh::view::look_at_mat4(light, light + dir, up))
 }
 
+/// Whether a sphere at `centre` of `radius` can cast into face `face` (as
+/// numbered in [`FACES`]) of the light at `light`: whether it reaches into
+/// the face's square pyramid, whose apex is the light. Exact where it says
+/// no: a sphere wholly behind the face's apex plane, or wholly beyond one
+/// of its side planes, covers none of its texels (a face draws only the
+/// traced sphere's own points, and a mesh lies inside its bounding
+/// sphere). Near the apex it may say yes for a sphere that only grazes the
+/// corner between two planes: drawn, then, into texels it does not cover.
+pub fn casts_into(face: usize, light: Vec3, centre: Vec3, radius: f32) -> bool {
+    let d = (centre - light).to_array();
+    let axis = face / 2;
+    let ahead = if face.is_multiple_of(2) { d[axis] } else { -d[axis] };
+    // A side plane through the apex at 45 degrees to the axis: the
+    // distance beyond it is (|other| - ahead) / sqrt 2.
+    let reach = radius * std::f32::consts::SQRT_2;
+    ahead > -radius
+        && (0..3)
+            .filter(|&other| other != axis)
+            .all(|other| ahead - d[other].abs() > -reach)
+}
+
+/// Sorts `casters` (each with its bounding sphere's centre and radius) into
+/// `out` face by face, each only into the faces it can cast into (or, with
+/// `cull` off, every one into all six); returns each face's range of `out`.
+pub fn sort_into_faces<T: Copy>(
+    casters: impl Iterator<Item = (T, Vec3, f32)> + Clone,
+    light: Vec3,
+    cull: bool,
+    out: &mut Vec<T>,
+) -> [std::ops::Range<u32>; 6] {
+    out.clear();
+    std::array::from_fn(|face| {
+        let start = out.len() as u32;
+        out.extend(
+            casters
+                .clone()
+                .filter(|&(_, centre, radius)| !cull || casts_into(face, light, centre, radius))
+                .map(|(caster, ..)| caster),
+        );
+        start..out.len() as u32
+    })
+}
+
 /// What a face is drawn with: its view-projection, and the light it looks
 /// out from (balls face it; see `vs_ball_shadow` in the shader).
 #[repr(C)]
@@ -139,6 +182,106 @@ impl ShadowCube {
 mod tests {
     use super::*;
 
+    /// Points spread over a sphere of directions, from a seed.
+    fn directions(seed: u32, count: usize) -> Vec<Vec3> {
+        let mut state = seed.wrapping_mul(2_654_435_761).max(1);
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state as f32 / u32::MAX as f32 * 2.0 - 1.0
+        };
+        (0..count)
+            .map(|_| Vec3::new(next(), next(), next()))
+            .filter(|d| d.length() > 1e-3)
+            .collect()
+    }
+
+    #[test]
+    fn a_ball_wholly_below_the_light_casts_into_no_upward_face() {
+        let light = Vec3::new(0.3, 3.75, -0.2);
+        for seed in 1..4 {
+            for d in directions(seed, 500) {
+                let radius = 0.02 + d.x.abs() * 0.3;
+                // Somewhere below the light by more than its radius.
+                let centre =
+                    light + Vec3::new(d.x * 5.0, -radius - d.y.abs() * 3.0 - 1e-3, d.z * 5.0);
+                assert!(!casts_into(2, light, centre, radius), "{centre} r {radius}");
+                // It still casts into the downward face or a side one.
+                assert!((0..6).any(|f| casts_into(f, light, centre, radius)));
+            }
+        }
+    }
+
+    #[test]
+    fn a_sphere_casts_into_every_face_its_points_fall_in() {
+        // Any point of the sphere lies in some face's pyramid (the one its
+        // direction selects); that face must be among those it casts into.
+        let light = Vec3::new(0.0, 3.75, 0.0);
+        for seed in 1..5 {
+            let centres = directions(seed, 200);
+            let offsets = directions(seed + 100, 60);
+            for c in &centres {
+                let centre = light + *c * 3.0;
+                let radius = 0.05 + c.y.abs() * 0.8;
+                for o in &offsets {
+                    let point = centre + o.normalize() * radius * o.length().min(1.0);
+                    let face = pick_face(point - light);
+                    assert!(
+                        casts_into(face, light, centre, radius),
+                        "{centre} r {radius}: point {point} in face {face}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn culling_off_puts_every_caster_in_every_face_and_on_keeps_fewer() {
+        let light = Vec3::new(0.0, 3.75, 0.0);
+        let balls: Vec<(usize, Vec3, f32)> = directions(7, 300)
+            .into_iter()
+            .enumerate()
+            .map(|(i, d)| {
+                (
+                    i,
+                    Vec3::new(d.x * 4.0, 0.1 + d.y.abs() * 3.0, d.z * 4.0),
+                    0.1,
+                )
+            })
+            .collect();
+        let mut out = Vec::new();
+        let all = sort_into_faces(balls.iter().copied(), light, false, &mut out);
+        assert!(all.iter().all(|r| r.len() == balls.len()));
+        let culled = sort_into_faces(balls.iter().copied(), light, true, &mut out);
+        assert!(culled[2].is_empty(), "nothing above the light: {culled:?}");
+        let total: usize = culled.iter().map(|r| r.len()).sum();
+        assert!(total >= balls.len() && total < 2 * balls.len(), "{total}");
+        // Each face's range lists its casters in their own order.
+        for (face, range) in culled.iter().enumerate() {
+            let listed = &out[range.start as usize..range.end as usize];
+            assert!(listed.windows(2).all(|w| w[0] < w[1]));
+            assert!(
+                listed
+                    .iter()
+                    .all(|&i| casts_into(face, light, balls[i].1, balls[i].2))
+            );
+        }
+    }
+
+    fn pick_face(d: Vec3) -> usize {
+        let a = d.abs();
+        if a.x >= a.y && a.x >= a.z {
+            if d.x > 0.0 { 0 } else { 1 }
+        } else if a.y >= a.z {
+            if d.y > 0.0 { 2 } else { 3 }
+        } else if d.z > 0.0 {
+            4
+        } else {
+            5
+        }
+    }
+
     #[test]
     fn every_direction_lands_inside_the_face_it_selects() {
         // The shader picks a face by the major axis; the point must project
@@ -153,16 +296,7 @@ mod tests {
             Vec3::new(-0.2, 0.4, 1.0),
             Vec3::new(0.7, -0.6, -1.0),
         ] {
-            let a = d.abs();
-            let face = if a.x >= a.y && a.x >= a.z {
-                if d.x > 0.0 { 0 } else { 1 }
-            } else if a.y >= a.z {
-                if d.y > 0.0 { 2 } else { 3 }
-            } else if d.z > 0.0 {
-                4
-            } else {
-                5
-            };
+            let face = pick_face(d);
             let clip = faces[face] * (light + d * 2.0).extend(1.0);
             let ndc = clip.truncate() / clip.w;
             assert!(ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0, "{d}: {ndc}");

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Parser, Subcommand};
 
 use crate::scene::Overrides;
-use rolypoly_render::LightConfig;
+use rolypoly_render::{LightConfig, QualityChoice};
 
 /// Help section of the options shared by every command.
 const SCENE_HEADING: &str = "Scene options";
@@ -44,6 +44,7 @@ impl WindowArgs {
             fullscreen: self.fullscreen,
             vsync: !self.no_vsync,
             msaa: self.msaa,
+            quality: self.quality,
             log_events: self.log_events,
             seed,
             screenshot_dir: self.screenshot_dir.clone(),
@@ -73,9 +74,16 @@ pub struct WindowArgs {
     #[arg(long, help_heading = WINDOW_HEADING)]
     pub no_vsync: bool,
 
-    /// Multisample anti-aliasing in the window: 4 or 1 (off).
-    #[arg(long = "window-msaa", value_name = "N", default_value_t = 4, value_parser = parse_msaa, help_heading = WINDOW_HEADING)]
-    pub msaa: u32,
+    /// How finely the window draws: high, medium, low, or auto, which
+    /// starts high and steps down while frames are slower than 30 a second
+    /// (default: the scene's render.quality, auto unless it says otherwise).
+    #[arg(long, value_name = "LEVEL", value_parser = parse_quality, help_heading = WINDOW_HEADING)]
+    pub quality: Option<QualityChoice>,
+
+    /// Multisample anti-aliasing in the window at every quality level: 4 or
+    /// 1 (off) (default: the level's own).
+    #[arg(long = "window-msaa", value_name = "N", value_parser = parse_msaa, help_heading = WINDOW_HEADING)]
+    pub msaa: Option<u32>,
 
     /// Print every change of state (keys, modes, grabs, screenshots) as one
     /// JSON object per line on standard output.
@@ -297,9 +305,16 @@ pub struct ClipArgs {
 /// How the frames of `render`, `record` and `replay` are drawn.
 #[derive(Debug, Args)]
 pub struct FrameArgs {
-    /// Multisample anti-aliasing: 4 or 1 (off).
-    #[arg(long, value_name = "N", default_value_t = 4, value_parser = parse_msaa)]
-    pub msaa: u32,
+    /// How finely frames are drawn: high, medium or low; auto draws as
+    /// high, so that pictures do not depend on the machine (default: the
+    /// scene's render.quality).
+    #[arg(long, value_name = "LEVEL", value_parser = parse_quality)]
+    pub quality: Option<QualityChoice>,
+
+    /// Multisample anti-aliasing: 4 or 1 (off) (default: the quality
+    /// level's).
+    #[arg(long, value_name = "N", value_parser = parse_msaa)]
+    pub msaa: Option<u32>,
 
     /// Camera position and the point it looks at: EX,EY,EZ,TX,TY,TZ in metres
     /// (default: the whole room from outside its front wall).
@@ -313,9 +328,10 @@ pub struct FrameArgs {
     #[command(flatten)]
     pub effects: LightEffectArgs,
 
-    /// Size of each of the six shadow faces, in texels (16 ..= 4096).
-    #[arg(long, value_name = "N", default_value_t = 1024, value_parser = clap::value_parser!(u32).range(16..=4096))]
-    pub shadow_size: u32,
+    /// Size of each of the six shadow faces, in texels (16 ..= 4096)
+    /// (default: the quality level's).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(16..=4096))]
+    pub shadow_size: Option<u32>,
 
     /// Use this OBJ file as the tumbler's mesh instead of the built-in one.
     #[arg(long, value_name = "FILE")]
@@ -331,6 +347,16 @@ pub struct MakeTumblerObjArgs {
     /// The OBJ file to write.
     #[arg(long, value_name = "FILE.obj")]
     pub out: PathBuf,
+}
+
+/// A quality level by name.
+fn parse_quality(text: &str) -> Result<QualityChoice, String> {
+    QualityChoice::from_name(text.trim()).ok_or_else(|| {
+        format!(
+            "`{text}` is not a quality level: use one of {}",
+            QualityChoice::NAMES.join(", ")
+        )
+    })
 }
 
 /// 1 or 4 samples per pixel.
@@ -505,6 +531,31 @@ mod tests {
         assert_eq!(
             parse_speed("0.05").unwrap_err(),
             "0.05 is out of range: allowed 0.1 ..= 50"
+        );
+    }
+
+    #[test]
+    fn quality_levels_are_read_by_name_and_others_named_in_the_error() {
+        let cli = Cli::try_parse_from(["rolypoly", "--quality", "low"]).unwrap();
+        assert_eq!(cli.window.quality, QualityChoice::from_name("low"));
+        let cli = Cli::try_parse_from([
+            "rolypoly",
+            "render",
+            "--out",
+            "a.png",
+            "--quality",
+            "medium",
+        ])
+        .unwrap();
+        let Some(Command::Render(args)) = cli.command else {
+            panic!("render")
+        };
+        assert_eq!(args.frame.quality, QualityChoice::from_name("medium"));
+        assert_eq!(args.frame.msaa, None);
+        let error = parse_quality("ultra").unwrap_err();
+        assert!(
+            error.contains("ultra") && error.contains("high, medium, low, auto"),
+            "{error}"
         );
     }
 

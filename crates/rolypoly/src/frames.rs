@@ -7,7 +7,9 @@ use std::path::Path;
 use anyhow::Context;
 use glam::Vec3;
 use rolypoly_physics::WorldConfig;
-use rolypoly_render::{Camera, LightConfig, MeshData, RenderSettings, Snapshot};
+use rolypoly_render::{
+    Camera, LightConfig, MeshData, Quality, QualityChoice, RenderSettings, Snapshot,
+};
 
 use crate::cli::FrameArgs;
 use crate::simulation::Simulation;
@@ -18,22 +20,27 @@ pub struct Frames {
     snapshot: Snapshot,
     camera: Camera,
     shadows: bool,
+    level: Quality,
 }
 
 impl Frames {
     /// Frames of `width` x `height` of the scene `config` drawn as `args`
-    /// say.
+    /// say, at the scene's `quality` unless they say otherwise (auto is
+    /// high here: a picture does not depend on the machine).
     pub fn new(
         config: &WorldConfig,
+        quality: QualityChoice,
         args: &FrameArgs,
         (width, height): (u32, u32),
     ) -> anyhow::Result<Frames> {
         let mesh = args.tumbler_obj.as_deref().map(read_obj).transpose()?;
+        let level = args.quality.unwrap_or(quality).first();
+        let drawn = level.settings();
         let settings = RenderSettings {
-            msaa: args.msaa,
-            shadow_size: args.shadow_size,
+            msaa: args.msaa.unwrap_or(drawn.msaa),
+            shadow_size: args.shadow_size.unwrap_or(drawn.shadow_size),
             shadows: !args.no_shadows,
-            ..RenderSettings::default()
+            ..drawn
         };
         let snapshot = Snapshot::new(config, settings, width, height, mesh)?;
         let overview = Camera::overview(config.room.size.as_vec3());
@@ -49,6 +56,7 @@ impl Frames {
             snapshot,
             camera,
             shadows: settings.shadows,
+            level,
         })
     }
 
@@ -80,7 +88,8 @@ impl Frames {
     /// How the frames are drawn, in words, and on what.
     pub fn describe(&self) -> String {
         format!(
-            "MSAA {}x, shadows {}, on {}",
+            "quality {}, MSAA {}x, shadows {}, on {}",
+            self.level.name(),
             self.snapshot.renderer.settings().msaa,
             if self.shadows { "on" } else { "off" },
             self.snapshot.gpu.describe()

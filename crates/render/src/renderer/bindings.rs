@@ -66,7 +66,7 @@ impl Layouts {
         let tonemap = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("tonemap"),
             entries: &[
-                texture_entry(0, false),
+                texture_entry(0, true),
                 uniform_entry(1, wgpu::ShaderStages::FRAGMENT),
                 texture_entry(2, true),
                 texture_entry(3, true),

@@ -70,6 +70,15 @@ pub struct RenderSettings {
     pub shadow_size: u32,
     /// Whether the point light casts shadows.
     pub shadows: bool,
+    /// Shadow filter taps along each side of its square: 4 (16 taps) or 2
+    /// (4), each a bilinear comparison of 2 x 2 texels.
+    pub shadow_taps: u32,
+    /// Draw each ball and tumbler only into the shadow faces it can cast
+    /// into. It changes no pixel; off only to measure what it saves.
+    pub cull_shadow_faces: bool,
+    /// Share of the output's width and height the scene is lit at (1 or
+    /// less); tone mapping scales it up to the output.
+    pub resolution: f32,
     /// Scale of the light before tone mapping.
     pub exposure: f32,
     /// Depth-test a ball's fragments before tracing its sphere in them,
@@ -84,6 +93,9 @@ impl Default for RenderSettings {
             msaa: 4,
             shadow_size: 1024,
             shadows: true,
+            shadow_taps: 4,
+            cull_shadow_faces: true,
+            resolution: 1.0,
             exposure: 1.0,
             early_ball_depth: true,
         }
@@ -148,7 +160,19 @@ pub struct Renderer {
     tumbler: GpuMesh,
     instances: InstanceBuffer<Instance>,
     balls: InstanceBuffer<BallInstance>,
+    /// The shadow faces' own lists: each ball and tumbler once for every
+    /// face it casts into.
+    shadow_balls: InstanceBuffer<BallInstance>,
+    shadow_tumblers: InstanceBuffer<Instance>,
+    /// The tumbler mesh's bounding sphere, in its own space.
+    tumbler_bounds: (glam::Vec3, f32),
     targets: Option<Targets>,
+}
+
+/// Where each face's casters lie in the shadow lists.
+struct FaceRanges {
+    balls: [std::ops::Range<u32>; 6],
+    tumblers: [std::ops::Range<u32>; 6],
 }
 
 impl Renderer {
@@ -165,6 +189,8 @@ impl Renderer {
         let settings = RenderSettings {
             msaa: gpu.msaa_samples(settings.msaa),
             early_ball_depth: settings.early_ball_depth && gpu.has_early_depth_test(),
+            // A share of the output: some of it, and never more.
+            resolution: settings.resolution.clamp(0.05, 1.0),
             ..settings
         };
         let layouts = Layouts::new(device);
@@ -176,7 +202,7 @@ impl Renderer {
         });
         let tonemap_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("tonemap params"),
-            contents: bytemuck::cast_slice(&[settings.exposure, 0.0, 0.0, 0.0]),
+            contents: bytemuck::cast_slice(&[settings.exposure, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0]),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let shadow_cube = ShadowCube::new(device, settings.shadow_size, &layouts.face);
@@ -220,6 +246,9 @@ impl Renderer {
             tumbler: GpuMesh::upload(device, "tumbler", tumbler_mesh),
             instances: InstanceBuffer::new(device, "instances"),
             balls: InstanceBuffer::new(device, "balls"),
+            shadow_balls: InstanceBuffer::new(device, "shadow balls"),
+            shadow_tumblers: InstanceBuffer::new(device, "shadow tumblers"),
+            tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
         }
     }
@@ -286,7 +315,8 @@ impl Renderer {
             });
         let mut draw_calls = 0;
         if self.settings.shadows {
-            draw_calls += self.shadow_pass(&mut encoder, &ranges);
+            let faces = self.sort_shadow_casters(gpu, view, &ranges);
+            draw_calls += self.shadow_pass(&mut encoder, &faces);
         }
         let targets = self
             .targets
@@ -312,6 +342,10 @@ impl Renderer {
             glow,
             flag(view.light.occlusion),
             flag(targets.bloom.levels > 1),
+            width as f32,
+            height as f32,
+            flag(targets.scene_size != (width, height)),
+            0.0,
         ];
         gpu.queue
             .write_buffer(&self.tonemap_params, 0, bytemuck::cast_slice(&params));
@@ -353,9 +387,46 @@ impl Renderer {
         }
     }
 
+    /// Lists the balls and tumblers face by face, each in the faces it can
+    /// cast into (see [`shadow::casts_into`]), and uploads the lists.
+    fn sort_shadow_casters(&mut self, gpu: &Gpu, view: &SceneView, ranges: &Ranges) -> FaceRanges {
+        let light = view.light.position;
+        let cull = self.settings.cull_shadow_faces;
+        let balls = shadow::sort_into_faces(
+            self.balls.items.iter().map(|b| {
+                let (centre, radius) = b.sphere();
+                (*b, centre, radius)
+            }),
+            light,
+            cull,
+            &mut self.shadow_balls.items,
+        );
+        let (centre, radius) = self.tumbler_bounds;
+        let tumbler_instances =
+            &self.instances.items[ranges.tumblers.start as usize..ranges.tumblers.end as usize];
+        let tumblers = shadow::sort_into_faces(
+            tumbler_instances
+                .iter()
+                .zip(&view.tumblers)
+                .map(|(instance, t)| {
+                    (
+                        *instance,
+                        t.model().transform_point3(centre),
+                        radius * t.scale,
+                    )
+                }),
+            light,
+            cull,
+            &mut self.shadow_tumblers.items,
+        );
+        self.shadow_balls.upload(gpu);
+        self.shadow_tumblers.upload(gpu);
+        FaceRanges { balls, tumblers }
+    }
+
     /// The ceiling light's six shadow faces: the balls and the tumblers
     /// (the room's walls cast no shadow inside it).
-    fn shadow_pass(&self, encoder: &mut wgpu::CommandEncoder, ranges: &Ranges) -> u32 {
+    fn shadow_pass(&self, encoder: &mut wgpu::CommandEncoder, faces: &FaceRanges) -> u32 {
         let mut draw_calls = 0;
         for face in 0..6 {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -374,12 +445,12 @@ impl Renderer {
                 multiview_mask: None,
             });
             pass.set_bind_group(0, &self.shadow_cube.face_bind_groups[face], &[]);
-            pass.set_vertex_buffer(1, self.balls.buffer.slice(..));
+            pass.set_vertex_buffer(1, self.shadow_balls.buffer.slice(..));
             pass.set_pipeline(&self.pipelines.ball_shadow);
-            draw_calls += draw(&mut pass, &self.quad, self.balls.range());
-            pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
+            draw_calls += draw(&mut pass, &self.quad, faces.balls[face].clone());
+            pass.set_vertex_buffer(1, self.shadow_tumblers.buffer.slice(..));
             pass.set_pipeline(&self.pipelines.shadow);
-            draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
+            draw_calls += draw(&mut pass, &self.tumbler, faces.tumblers[face].clone());
         }
         draw_calls
     }
@@ -481,6 +552,10 @@ impl Renderer {
         {
             return;
         }
+        // At least a pixel each way, however small the share.
+        let scaled =
+            |side: u32| ((side as f32 * self.settings.resolution).round() as u32).clamp(1, side);
+        let scene_size = (scaled(width), scaled(height));
         let kit = TargetKit {
             samples: self.settings.msaa,
             tonemap_layout: &self.tonemap_layout,
@@ -489,7 +564,7 @@ impl Renderer {
             bloom: &self.bloom,
             occlusion: &self.occlusion,
         };
-        self.targets = Some(Targets::new(&gpu.device, (width, height), &kit));
+        self.targets = Some(Targets::new(&gpu.device, (width, height), scene_size, &kit));
     }
 }
 

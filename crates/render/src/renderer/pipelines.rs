@@ -52,6 +52,8 @@ impl Pipelines {
                 immediate_size: 0,
             });
         let buffers = [Some(Vertex::layout()), Some(Instance::layout())];
+        let shadow_taps = ("SHADOW_TAPS", f64::from(settings.shadow_taps));
+        let scene_constants = [shadow_taps];
         // Opaque passes write depth; see-through ones blend and only test it.
         let scene_pipeline_for = |entry: &str, label: &str, blend: Option<wgpu::BlendState>| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -81,7 +83,10 @@ impl Pipelines {
                 fragment: Some(wgpu::FragmentState {
                     module: &shader,
                     entry_point: Some(entry),
-                    compilation_options: Default::default(),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &scene_constants,
+                        ..Default::default()
+                    },
                     targets: &scene_targets(blend),
                 }),
                 multiview_mask: None,
@@ -99,6 +104,7 @@ impl Pipelines {
             ("BALL_KIND", f64::from(kind as u32)),
             ("BALL_SPECULAR", f64::from(specular)),
             ("BALL_SHININESS", f64::from(shininess)),
+            shadow_taps,
         ];
         let ball_buffers = [Some(Vertex::layout()), Some(BallInstance::layout())];
         let ball_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {

@@ -8,8 +8,11 @@ use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT};
 
 /// Size-dependent render targets.
 pub(super) struct Targets {
+    /// The output's size, which tone mapping draws.
     pub width: u32,
     pub height: u32,
+    /// The size the scene is lit at, which every other target has.
+    pub scene_size: (u32, u32),
     /// Multisampled colour (absent at 1x, where `hdr` is drawn directly).
     pub msaa: Option<wgpu::TextureView>,
     pub hdr: wgpu::TextureView,
@@ -34,11 +37,17 @@ pub(super) struct TargetKit<'a> {
 }
 
 impl Targets {
-    /// Targets of `width` by `height` pixels.
-    pub fn new(device: &wgpu::Device, (width, height): (u32, u32), kit: &TargetKit) -> Targets {
+    /// Targets for an output of `width` by `height` pixels whose scene is
+    /// lit at `scene_size`.
+    pub fn new(
+        device: &wgpu::Device,
+        (width, height): (u32, u32),
+        scene_size: (u32, u32),
+        kit: &TargetKit,
+    ) -> Targets {
         let size = wgpu::Extent3d {
-            width,
-            height,
+            width: scene_size.0,
+            height: scene_size.1,
             depth_or_array_layers: 1,
         };
         let texture = |label, format, samples, usage| {
@@ -77,8 +86,8 @@ impl Targets {
             kit.samples,
             wgpu::TextureUsages::RENDER_ATTACHMENT,
         );
-        let bloom = BloomChain::new(device, kit.bloom, &hdr, (width, height));
-        let occlusion = kit.occlusion.target(device, &geometry, (width, height));
+        let bloom = BloomChain::new(device, kit.bloom, &hdr, scene_size);
+        let occlusion = kit.occlusion.target(device, &geometry, scene_size);
         let tonemap_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("tonemap"),
             layout: kit.tonemap_layout,
@@ -108,6 +117,7 @@ impl Targets {
         Targets {
             width,
             height,
+            scene_size,
             msaa,
             hdr,
             depth,

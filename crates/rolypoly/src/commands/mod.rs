@@ -44,11 +44,13 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Render(args)) => render::render(
             &mut Simulation::new(world, scene.effects, seed),
             &args.frame.effects.apply(&scene.light),
+            scene.quality,
             args,
         ),
         Some(Command::Record(args)) => record::record(
             &mut Simulation::new(world, scene.effects, seed),
             &args.frame.effects.apply(&scene.light),
+            scene.quality,
             args,
         ),
         Some(Command::Replay(args)) => replay::replay(args, &cli.window),

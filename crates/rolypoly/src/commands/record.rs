@@ -1,6 +1,6 @@
 //! `rolypoly record`: a run drawn frame by frame off-screen into a clip.
 
-use rolypoly_render::LightConfig;
+use rolypoly_render::{LightConfig, QualityChoice};
 
 use crate::cli::{RecordArgs, steps_for};
 use crate::clip::{frame_count, write_clip};
@@ -8,12 +8,18 @@ use crate::frames::Frames;
 use crate::simulation::Simulation;
 
 /// Records `sim` from now for `args.seconds`, `args.clip.fps` frames a
-/// simulated second, into `args.out`.
-pub fn record(sim: &mut Simulation, light: &LightConfig, args: &RecordArgs) -> anyhow::Result<()> {
+/// simulated second, into `args.out`, drawn at the scene's `quality`
+/// unless the flags say otherwise.
+pub fn record(
+    sim: &mut Simulation,
+    light: &LightConfig,
+    quality: QualityChoice,
+    args: &RecordArgs,
+) -> anyhow::Result<()> {
     if args.frame.fireball {
         sim.world.launch_fireball(None);
     }
-    let mut frames = Frames::new(sim.world.config(), &args.frame, args.clip.size)?;
+    let mut frames = Frames::new(sim.world.config(), quality, &args.frame, args.clip.size)?;
     let count = frame_count(args.seconds, args.clip.fps);
     let dt = sim.world.config().solver.dt;
     let mut steps_done = 0;

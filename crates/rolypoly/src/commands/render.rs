@@ -1,19 +1,25 @@
 //! `rolypoly render`: a run to a moment, that frame as a PNG.
 
 use anyhow::Context;
-use rolypoly_render::LightConfig;
+use rolypoly_render::{LightConfig, QualityChoice};
 
 use crate::cli::{RenderArgs, steps_for};
 use crate::frames::Frames;
 use crate::simulation::Simulation;
 
-/// Runs `sim` to the requested time and writes that frame.
-pub fn render(sim: &mut Simulation, light: &LightConfig, args: &RenderArgs) -> anyhow::Result<()> {
+/// Runs `sim` to the requested time and writes that frame, drawn at the
+/// scene's `quality` unless the flags say otherwise.
+pub fn render(
+    sim: &mut Simulation,
+    light: &LightConfig,
+    quality: QualityChoice,
+    args: &RenderArgs,
+) -> anyhow::Result<()> {
     if args.frame.fireball {
         sim.world.launch_fireball(None);
     }
     sim.ticks(steps_for(args.time, sim.world.config().solver.dt));
-    let mut frames = Frames::new(sim.world.config(), &args.frame, args.size)?;
+    let mut frames = Frames::new(sim.world.config(), quality, &args.frame, args.size)?;
     let image = frames.draw(sim, light)?;
     image
         .save_with_format(&args.out, image::ImageFormat::Png)

@@ -53,7 +53,8 @@ fn clip(
     out: &std::path::Path,
 ) -> anyhow::Result<()> {
     let config = sandbox.world().config().clone();
-    let mut frames = Frames::new(&config, &args.frame, args.clip.size)?;
+    let quality = sandbox.scene().quality;
+    let mut frames = Frames::new(&config, quality, &args.frame, args.clip.size)?;
     let dt = config.solver.dt;
     let seconds = (log.to_tick - log.from_tick) as f64 * dt;
     if seconds > MAX_CLIP_SECONDS {

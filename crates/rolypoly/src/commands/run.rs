@@ -20,6 +20,9 @@ pub fn window(
     let options = args.options(seed, path);
     // The light's switches given as flags are settings like any other.
     scene.light = args.effects.apply(&scene.light);
+    if let Some(quality) = args.quality {
+        scene.quality = quality;
+    }
     let name = path.map_or_else(|| "default.toml".to_owned(), |p| p.display().to_string());
     crate::window::run(Sandbox::with_world(world, scene, &name, seed), options)
 }

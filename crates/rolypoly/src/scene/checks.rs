@@ -213,7 +213,7 @@ impl Checker<'_> {
                 let c = *(place.read)(scene);
                 self.each(name, &c.map(widen), rgb_text(c), bounds)
             }
-            Slot::Switch(_) | Slot::List(_) => Ok(()),
+            Slot::Switch(_) | Slot::Word(_) | Slot::List(_) => Ok(()),
         }
     }
 

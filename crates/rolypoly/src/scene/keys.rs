@@ -8,6 +8,7 @@
 
 use glam::DVec3;
 use rolypoly_physics::Rgb;
+use rolypoly_render::QualityChoice;
 
 use super::bounds::{Bounds, widen};
 use super::{MAX_BALLS, PARTICLE_CAPACITY, Scene};
@@ -35,6 +36,17 @@ pub struct Place<T: 'static> {
     pub write: fn(&mut Scene) -> &mut T,
 }
 
+/// Where a key that names one of a few choices lives: its value read as
+/// its name, and written from one.
+pub struct WordPlace {
+    /// The names allowed, in the order the panel lists them.
+    pub names: &'static [&'static str],
+    /// The value's name.
+    pub read: fn(&Scene) -> &'static str,
+    /// Sets the value named (one of `names`).
+    pub write: fn(&mut Scene, &str),
+}
+
 /// `place!(world.gravity)`: the field `scene.world.gravity`.
 macro_rules! place {
     ($($field:tt)+) => {
@@ -59,6 +71,8 @@ pub enum Slot {
     Vector(Place<DVec3>),
     /// A colour, `[r, g, b]` in linear light.
     Color(Place<Rgb>),
+    /// One of a few names, written as a string.
+    Word(WordPlace),
     /// A list of entries with keys of their own, read and checked by the
     /// code of each list.
     List(List),
@@ -117,6 +131,8 @@ pub enum Control {
     Slider(&'static str, f64, f64),
     /// A check box with this label.
     Checkbox(&'static str),
+    /// A drop-down list of the key's names with this label.
+    Choice(&'static str),
 }
 
 /// One key of a scene file.
@@ -179,8 +195,8 @@ const fn key_of(
 }
 
 use Allowed::{Any, Derived, Each, EachDerived, ListRules, NonZero, Within};
-use Control::{Checkbox, Hidden, Slider};
-use Slot::{Color, Count, Real, Single, Switch, Vector};
+use Control::{Checkbox, Choice, Hidden, Slider};
+use Slot::{Color, Count, Real, Single, Switch, Vector, Word};
 use Takes::{NextFrame, NextStep, Restart};
 
 /// Every key a scene file may set, in the order of `scenes/default.toml`.
@@ -368,6 +384,20 @@ pub static KEYS: &[Key] = &[
         NextFrame,
         Checkbox("contact occlusion"),
         "Darkening where things meet: under a ball, round a tumbler's base (--no-occlusion).",
+    ),
+    key_of(
+        "render.quality",
+        Word(WordPlace {
+            names: &QualityChoice::NAMES,
+            read: |scene| scene.quality.name(),
+            write: |scene, name| {
+                scene.quality = QualityChoice::from_name(name).unwrap_or(scene.quality);
+            },
+        }),
+        Any,
+        NextFrame,
+        Choice("quality"),
+        "How finely frames are drawn; auto starts high and steps down while the window is slow; render and record draw auto as high (--quality).",
     ),
     key_of(
         "balls.count",

@@ -24,7 +24,7 @@ use std::path::Path;
 
 use rolypoly_fx::EffectsConfig;
 use rolypoly_physics::WorldConfig;
-use rolypoly_render::LightConfig;
+use rolypoly_render::{LightConfig, QualityChoice};
 
 mod bounds;
 mod checks;
@@ -122,6 +122,8 @@ pub struct Scene {
     pub effects: EffectsConfig,
     /// The light (`[light]`).
     pub light: LightConfig,
+    /// How finely frames are drawn (`render.quality`).
+    pub quality: QualityChoice,
 }
 
 /// Settings given on the command line; they win over the scene file and are

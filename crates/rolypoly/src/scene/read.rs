@@ -146,6 +146,19 @@ impl<'a> Reader<'a> {
             },
             Slot::Vector(place) => put(place, scene, DVec3::from_array(self.three(value)?)),
             Slot::Color(place) => put(place, scene, self.three(value)?.map(|x| x as f32)),
+            Slot::Word(place) => match value.get_ref() {
+                DeValue::String(name) if place.names.contains(&name.as_ref()) => {
+                    (place.write)(scene, name);
+                }
+                DeValue::String(name) => {
+                    let problem = format!(
+                        "`{name}` is not allowed: expected one of {}",
+                        place.names.join(", ")
+                    );
+                    return Err(self.shape_error(span, format!("{}: {problem}", key.name)));
+                }
+                other => return Err(self.wrong_type(span, other, "a string")),
+            },
             Slot::List(list) => return self.list(*list, key.name, value, scene),
         }
         self.note_written(key.name, span);

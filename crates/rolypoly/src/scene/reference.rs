@@ -34,7 +34,7 @@ pub fn key_reference() -> String {
         };
         let shown = match key.control {
             Control::Hidden => String::new(),
-            Control::Slider(label, ..) | Control::Checkbox(label) => {
+            Control::Slider(label, ..) | Control::Checkbox(label) | Control::Choice(label) => {
                 format!("; panel: \"{label}\"")
             }
         };
@@ -147,6 +147,7 @@ fn type_name(key: &Key) -> &'static str {
         Slot::Switch(_) => "true or false",
         Slot::Vector(_) => "[x, y, z]",
         Slot::Color(_) => "[r, g, b]",
+        Slot::Word(_) => "string",
         Slot::List(List::TumblerColors) => "array of [r, g, b]",
         Slot::List(_) => "array of tables",
     }
@@ -166,6 +167,7 @@ fn default_text(key: &Key, scene: &Scene) -> String {
         Slot::Switch(p) => (p.read)(scene).to_string(),
         Slot::Vector(p) => three((p.read)(scene).to_array()),
         Slot::Color(p) => three((p.read)(scene).map(widen)),
+        Slot::Word(p) => format!("\"{}\"", (p.read)(scene)),
         Slot::List(list) => {
             let n = match list {
                 List::BallPlacements => world.balls.placements.len(),
@@ -183,7 +185,15 @@ fn default_text(key: &Key, scene: &Scene) -> String {
 
 fn allowed_text(key: &Key, scene: &Scene) -> String {
     match key.allowed {
-        Allowed::Any => "true or false".into(),
+        Allowed::Any => match &key.slot {
+            Slot::Word(place) => place
+                .names
+                .iter()
+                .map(|name| format!("\"{name}\""))
+                .collect::<Vec<_>>()
+                .join(", "),
+            _ => "true or false".into(),
+        },
         Allowed::Within(bounds) => bounds.to_string(),
         Allowed::Derived(bounds, why) => {
             format!("{why}: {} in the default scene", bounds(scene))

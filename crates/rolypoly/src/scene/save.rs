@@ -106,6 +106,7 @@ pub(super) fn value_of(key: &Key, scene: &Scene) -> Value {
         Slot::Switch(place) => Value::Boolean(*(place.read)(scene)),
         Slot::Vector(place) => vec3(*(place.read)(scene)),
         Slot::Color(place) => rgb(*(place.read)(scene)),
+        Slot::Word(place) => Value::String((place.read)(scene).to_owned()),
         Slot::List(list) => Value::Array(list_entries(*list, scene)),
     }
 }

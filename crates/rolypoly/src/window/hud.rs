@@ -14,6 +14,8 @@ pub struct HudState {
     pub frame_time: f64,
     pub step_time: f64,
     pub render_cpu: f64,
+    /// The quality level drawn, and why.
+    pub quality: String,
     pub balls_alive: usize,
     pub balls_total: usize,
     pub particles: (usize, usize),
@@ -57,6 +59,7 @@ impl HudState {
             frame_time: 0.0,
             step_time: 0.0,
             render_cpu: 0.0,
+            quality: String::new(),
             balls_alive: balls,
             balls_total: balls,
             particles: (0, 0),
@@ -198,6 +201,7 @@ impl Hud {
                         1e3 * s.step_time,
                         1e3 * s.render_cpu
                     ));
+                    ui.label(&s.quality);
                     ui.label(format!("balls {} of {}", s.balls_alive, s.balls_total));
                     ui.label(format!(
                         "particles {} of {} ({} dropped)",

@@ -7,5 +7,6 @@ pub(crate) mod fly_camera;
 mod hud;
 mod log;
 mod panel;
+mod quality;
 
 pub use app::{WindowOptions, run};

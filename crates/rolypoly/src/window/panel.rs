@@ -225,6 +225,18 @@ fn settings(ui: &mut egui::Ui, scene: &mut Scene, when: Takes) {
             (Control::Checkbox(label), Slot::Switch(place)) => {
                 ui.checkbox((place.write)(scene), label);
             }
+            (Control::Choice(label), Slot::Word(place)) => {
+                let now = (place.read)(scene);
+                egui::ComboBox::from_label(label)
+                    .selected_text(now)
+                    .show_ui(ui, |ui| {
+                        for name in place.names {
+                            if ui.selectable_label(*name == now, *name).clicked() {
+                                (place.write)(scene, name);
+                            }
+                        }
+                    });
+            }
             (Control::Slider(label, lo, hi), Slot::Real(place)) => {
                 number(ui, label, (place.write)(scene), lo..=hi);
             }

@@ -37,6 +37,15 @@ fn changed(key: &Key, scene: &Scene) -> Option<Scene> {
             let c = *(p.read)(scene);
             near(1.0).map(|k| with(&|s| *(p.write)(s) = c.map(|x| (x * k as f32).min(1.0))))
         }
+        Slot::Word(p) => {
+            let now = (p.read)(scene);
+            let other = p
+                .names
+                .iter()
+                .find(|n| **n != now)
+                .expect("two names or more");
+            [other; 6].map(|name| with(&|s| (p.write)(s, name)))
+        }
         Slot::List(_) => return None,
     };
     candidates
@@ -104,6 +113,7 @@ fn the_panel_shows_switches_as_boxes_and_numbers_as_sliders_within_range() {
         match key.control {
             Control::Hidden => continue,
             Control::Checkbox(_) => assert!(matches!(key.slot, Slot::Switch(_)), "{}", key.name),
+            Control::Choice(_) => assert!(matches!(key.slot, Slot::Word(_)), "{}", key.name),
             Control::Slider(_, lo, hi) => {
                 let default = match &key.slot {
                     Slot::Real(p) => *(p.read)(&scene),

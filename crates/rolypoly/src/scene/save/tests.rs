@@ -51,6 +51,20 @@ fn changes(value: &Value) -> Vec<Value> {
             .to_vec(),
         Value::Integer(n) => [n + 1, n - 1, n / 2].map(Value::Integer).to_vec(),
         Value::Boolean(b) => vec![Value::Boolean(!b)],
+        // A word key: the other names of the key it is one of.
+        Value::String(word) => crate::scene::keys::KEYS
+            .iter()
+            .find_map(|key| match &key.slot {
+                crate::scene::keys::Slot::Word(place) if place.names.contains(&word.as_str()) => {
+                    Some(place.names)
+                }
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("`{word}` is no key's name"))
+            .iter()
+            .filter(|name| *name != word)
+            .map(|name| Value::String((*name).to_owned()))
+            .collect(),
         other => panic!("no change for {other:?}"),
     }
 }

@@ -8,13 +8,14 @@
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use anyhow::Context as _;
 use glam::Vec2;
 use rolypoly_physics::SphereSpec;
 use rolypoly_render::{
-    Camera, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, RenderSettings, Renderer,
+    Camera, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, Quality, QualityChoice,
+    RenderSettings, Renderer,
 };
 use serde_json::json;
 use winit::application::ApplicationHandler;
@@ -27,6 +28,7 @@ use super::fly_camera::FlyCamera;
 use super::hud::{Hud, HudState};
 use super::log::EventLog;
 use super::panel::Panel;
+use super::quality::WindowQuality;
 use crate::sandbox::{MAX_CATCH_UP, Sandbox};
 use input::{Keys, MouseMode};
 
@@ -43,8 +45,10 @@ pub struct WindowOptions {
     pub fullscreen: bool,
     /// Wait for the display's refresh.
     pub vsync: bool,
-    /// Multisamples: 4 or 1.
-    pub msaa: u32,
+    /// Multisamples at every quality level (4 or 1), or the level's own.
+    pub msaa: Option<u32>,
+    /// The quality level the flag asks for, over the scene's.
+    pub quality: Option<QualityChoice>,
     /// Print every change of state as a JSON line.
     pub log_events: bool,
     /// The scene's seed, for the HUD.
@@ -98,6 +102,12 @@ struct App {
     tumbler_mesh: MeshData,
     paint: image::RgbaImage,
     panel: Panel,
+    quality: WindowQuality,
+    /// The time the last frame spent simulating, which its drawing did not.
+    last_simulation: Duration,
+    /// Frames drawn since the frame rate was last logged, and since when.
+    frames_counted: u32,
+    counting_since: Instant,
     running: Option<Running>,
     error: Option<anyhow::Error>,
 
@@ -136,6 +146,10 @@ impl App {
             camera_recorded: camera,
             hud_state: HudState::new(options.seed, world.balls().len()),
             panel: Panel::new(options.scene_file.clone()),
+            quality: WindowQuality::new(sandbox.scene().quality, options.msaa),
+            last_simulation: Duration::ZERO,
+            frames_counted: 0,
+            counting_since: Instant::now(),
             sandbox,
             options,
             tumbler_spheres,
@@ -190,7 +204,10 @@ impl App {
         self.last_frame = Some(now);
         // After a stall the camera, like the world, does not leap ahead.
         self.walk(elapsed.min(MAX_CATCH_UP) as f32);
+        let drawing = Duration::from_secs_f64(elapsed).saturating_sub(self.last_simulation);
         self.simulate(elapsed);
+        self.last_simulation = now.elapsed();
+        self.follow_quality(drawing);
         if self.options.replay_digest.is_some() {
             self.follow_replay();
         }
@@ -256,9 +273,45 @@ impl App {
                 action = panel.show(ui, sandbox);
             });
         r.gpu.queue.present(texture);
+        self.count_frame();
         if let Some(action) = action {
             self.act(action);
         }
+    }
+
+    /// Logs the frames drawn a second, and at what level, once a second.
+    fn count_frame(&mut self) {
+        self.frames_counted += 1;
+        let seconds = self.counting_since.elapsed().as_secs_f64();
+        if seconds >= 1.0 {
+            self.log.say(
+                "frame_rate",
+                json!({ "fps": f64::from(self.frames_counted) / seconds, "quality": self.quality.level().name() }),
+            );
+            self.frames_counted = 0;
+            self.counting_since = Instant::now();
+        }
+    }
+
+    /// Takes the scene's quality level and the last frame's drawing time;
+    /// where the level changes, the renderer is made anew for it.
+    fn follow_quality(&mut self, drawing: Duration) {
+        let changed = self.quality.update(self.sandbox.scene().quality, drawing);
+        self.hud_state.quality = self.quality.describe();
+        let Some(r) = self.running.as_mut().filter(|_| changed) else {
+            return;
+        };
+        r.renderer = Renderer::new(
+            &r.gpu,
+            self.quality.settings(),
+            r.renderer.output_format(),
+            &self.tumbler_mesh,
+            &self.paint,
+        );
+        self.log.say(
+            "quality",
+            json!({ "level": self.quality.level().name(), "why": self.hud_state.quality }),
+        );
     }
 
     fn log_camera(&self) {
@@ -275,9 +328,11 @@ impl App {
             return Ok(());
         };
         let (w, h) = (r.config.width.max(1), r.config.height.max(1));
+        // As `render` draws: a picture that does not depend on the machine.
+        let high = Quality::High.settings();
         let settings = RenderSettings {
-            msaa: self.options.msaa,
-            ..RenderSettings::default()
+            msaa: self.options.msaa.unwrap_or(high.msaa),
+            ..high
         };
         let mut renderer = Renderer::new(
             &r.gpu,

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use anyhow::Context as _;
 use glam::Vec2;
-use rolypoly_render::{Gpu, RenderSettings, Renderer};
+use rolypoly_render::{Gpu, Renderer};
 use serde_json::json;
 use winit::dpi::PhysicalSize;
 use winit::event_loop::ActiveEventLoop;
@@ -79,11 +79,13 @@ impl App {
             view_formats: vec![],
         };
         surface.configure(&gpu.device, &config);
-        let settings = RenderSettings {
-            msaa: self.options.msaa,
-            ..RenderSettings::default()
-        };
-        let renderer = Renderer::new(&gpu, settings, format, &self.tumbler_mesh, &self.paint);
+        let renderer = Renderer::new(
+            &gpu,
+            self.quality.settings(),
+            format,
+            &self.tumbler_mesh,
+            &self.paint,
+        );
         let hud = Hud::new(&window, &gpu, format);
         self.cursor = Vec2::new(config.width as f32, config.height as f32) * 0.5;
         self.log.say(
