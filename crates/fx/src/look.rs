@@ -27,16 +27,16 @@ pub struct Shell {
 /// brighter than white, so it glows through the bloom from across the room.
 pub const HEART_COLOR: Vec3 = Vec3::new(16.0, 8.0, 2.0);
 /// The heart's radius, as a share of the fireball's.
-const HEART_SHARE: f32 = 0.5;
+const HEART_SHARE: f32 = 0.6;
 
 /// Linear HDR colour of the crystal cores (brighter than 1: they glow).
 pub const CORE_COLOR: Vec3 = Vec3::new(4.0, 2.8, 1.2);
 /// Linear HDR colours of the inner and the outer shell.
 pub const SHELL_COLORS: [Vec3; 2] = [Vec3::new(3.0, 1.2, 0.15), Vec3::new(2.4, 0.36, 0.72)];
 /// How brightly the fireball lights the room for each unit of its shells'
-/// glow (colour times alpha): about as bright as the ceiling light at a
-/// metre, so that it lights the floor it flies over.
-const LIGHT_PER_GLOW: f32 = 1.5;
+/// glow (colour times alpha): brighter than the ceiling light within a
+/// metre, so that the floor and walls it flies past glow orange.
+const LIGHT_PER_GLOW: f32 = 4.0;
 
 /// How the fireball looks at one moment: heart, cores and shells.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,12 +76,14 @@ impl FireballLook {
         }
         let breathe = |rate: f32, phase: f32| (std::f32::consts::TAU * rate * t + phase).sin();
         let shells = [
+            // The shells reach beyond the body that collides: a corona
+            // that reads as fire from across the room.
             Shell {
-                radius: radius * (1.0 + 0.08 * breathe(1.6, 0.0)),
+                radius: radius * (1.3 + 0.1 * breathe(1.6, 0.0)),
                 alpha: 0.45 + 0.15 * breathe(1.6, 0.0),
             },
             Shell {
-                radius: radius * (1.35 + 0.12 * breathe(0.9, 1.3)),
+                radius: radius * (2.0 + 0.18 * breathe(0.9, 1.3)),
                 alpha: 0.22 + 0.1 * breathe(0.9, 1.3),
             },
         ];

@@ -334,8 +334,8 @@ impl Default for WorldConfig {
             fireball: FireballConfig {
                 radius: 0.2,
                 speed: 6.0,
-                spawn: DVec3::new(0.0, 1.5, 3.5),
-                direction: DVec3::new(0.1, -0.1, -1.0),
+                spawn: DVec3::new(-1.5, 1.6, -3.0),
+                direction: DVec3::new(0.3, -0.1, 1.0),
                 consumes_balls: true,
                 starts_active: false,
             },

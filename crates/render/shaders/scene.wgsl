@@ -21,7 +21,8 @@ struct Globals {
     // z: depth bias; w: unused.
     shadow: vec4<f32>,
     light_view_proj: array<mat4x4<f32>, 6>,
-    // The light falls off as 1 / (x + y d + z d^2) at distance d; w: unused.
+    // The light falls off as 1 / (x + y d + z d^2) at distance d; w: where
+    // it fades to nothing (0: it reaches everywhere).
     light_falloff: vec4<f32>,
     // xyz: the fireball's light; w: 1 while it shines, else 0.
     fireball_pos: vec4<f32>,
@@ -227,7 +228,14 @@ fn point_light(position: vec3<f32>, color: vec3<f32>, falloff: vec4<f32>, base: 
     let distance = length(to_light);
     let l = to_light / distance;
     let h = normalize(l + v);
-    let light = color / (falloff.x + falloff.y * distance + falloff.z * distance * distance);
+    // Where the light has a reach (w), it fades to nothing there (as
+    // `attenuated` in lighting.rs).
+    var window = 1.0;
+    if falloff.w > 0.0 {
+        let edge = max(1.0 - pow(distance / falloff.w, 4.0), 0.0);
+        window = edge * edge;
+    }
+    let light = color * window / (falloff.x + falloff.y * distance + falloff.z * distance * distance);
     let diffuse = base * max(dot(n, l), 0.0) * light;
     let specular = material.y * pow(max(dot(n, h), 0.0), material.z) * light * step(0.0, dot(n, l));
     return diffuse + specular;
@@ -442,7 +450,7 @@ fn fs_emissive(in: VertexOut) -> SceneFragment {
 // Kind 0, a cube: a hole in space (a dark, half-covering inside) framed by a
 // bright edge and a circuit-like grid, as in the report's "space collapse".
 // Kind 1, a shell: glow, brightest at its rim, over a veil.
-const SHELL_COVER: f32 = 0.5;
+const SHELL_COVER: f32 = 0.7;
 @fragment
 fn fs_glow(in: VertexOut) -> @location(0) vec4<f32> {
     let alpha = in.color.a;
@@ -459,9 +467,9 @@ fn fs_glow(in: VertexOut) -> @location(0) vec4<f32> {
     }
     let v = normalize(globals.camera_pos.xyz - in.world);
     let facing = abs(dot(normalize(in.normal), v));
-    let strength = 0.3 + 1.3 * pow(1.0 - facing, 2.0);
-    // Half covering what is behind, so that it shows as fire even against
-    // a bright wall.
+    let strength = 0.9 + 1.6 * pow(1.0 - facing, 2.0);
+    // Covering much of what is behind, so that it shows as fire even
+    // against a bright wall.
     return vec4<f32>(in.color.rgb * strength * alpha, SHELL_COVER * alpha);
 }
 

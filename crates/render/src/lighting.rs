@@ -6,11 +6,17 @@ use crate::room;
 use crate::view::{PointLight, SceneView};
 use glam::Vec3;
 
-/// How much of a point light's `color` arrives at `distance`, before the
-/// cosine: `1 / (c0 + c1 d + c2 d^2)` of it, for its `falloff`
-/// `[c0, c1, c2]` (see [`PointLight::falloff`]).
-pub fn attenuated(color: Vec3, [c0, c1, c2]: [f32; 3], distance: f32) -> Vec3 {
-    color / (c0 + c1 * distance + c2 * distance * distance)
+/// How much of `light`'s colour arrives at `distance`, before the cosine:
+/// `1 / (c0 + c1 d + c2 d^2)` of it, for its falloff `[c0, c1, c2]`, times
+/// `(1 - (d / reach)^4)^2` (0 beyond) where it has a reach. The same as
+/// `point_light` in scene.wgsl.
+pub fn attenuated(light: &PointLight, distance: f32) -> Vec3 {
+    let [c0, c1, c2] = light.falloff;
+    let window = light.reach.map_or(1.0, |reach| {
+        let edge = (1.0 - (distance / reach).powi(4)).max(0.0);
+        edge * edge
+    });
+    light.color * window / (c0 + c1 * distance + c2 * distance * distance)
 }
 
 /// The wood's grain, planks and seams darken its base colour by this
@@ -38,7 +44,7 @@ pub fn wall_light(view: &SceneView, lights: &[PointLight]) -> [Vec3; 6] {
                     let to_light = light.position - point;
                     let distance = to_light.length().max(1e-3);
                     let cosine = normal.dot(to_light / distance).max(0.0);
-                    sum += attenuated(light.color, light.falloff, distance) * cosine;
+                    sum += attenuated(light, distance) * cosine;
                 }
             }
         }
@@ -104,6 +110,7 @@ mod tests {
             position: Vec3::new(0.0, 3.0, 0.0),
             color: Vec3::splat(2.0),
             falloff: CEILING_FALLOFF,
+            reach: None,
         };
         let once = wall_light(&view, &[light]);
         let twice = wall_light(
@@ -150,6 +157,7 @@ mod tests {
             position: Vec3::new(-4.5, 2.0, 0.0),
             color: Vec3::ONE,
             falloff: CEILING_FALLOFF,
+            reach: None,
         };
         assert_eq!(wall_light(&view, &[light])[2], Vec3::ZERO);
     }

@@ -43,7 +43,11 @@ pub fn face_view_projections(light: Vec3) -> [Mat4; 6] {
 pub fn casts_into(face: usize, light: Vec3, centre: Vec3, radius: f32) -> bool {
     let d = (centre - light).to_array();
     let axis = face / 2;
-    let ahead = if face.is_multiple_of(2) { d[axis] } else { -d[axis] };
+    let ahead = if face.is_multiple_of(2) {
+        d[axis]
+    } else {
+        -d[axis]
+    };
     // A side plane through the apex at 45 degrees to the axis: the
     // distance beyond it is (|other| - ahead) / sqrt 2.
     let reach = radius * std::f32::consts::SQRT_2;

@@ -92,15 +92,21 @@ pub struct PointLight {
     pub color: Vec3,
     /// It falls off as `1 / (c0 + c1 d + c2 d^2)` at distance `d`.
     pub falloff: [f32; 3],
+    /// Where given, it fades smoothly to nothing at this distance (m), so
+    /// that a bright light near lights nothing far.
+    pub reach: Option<f32>,
 }
 
 /// The ceiling light's falloff: gentler than the inverse square near the
 /// light, so the floor under it is not burnt white, and like it far away.
 pub const CEILING_FALLOFF: [f32; 3] = [1.0, 0.05, 0.04];
 
-/// The fireball's falloff: its light reaches about 0.6 m at half strength,
-/// so it lights what it passes, not the whole room.
-const FIREBALL_FALLOFF: [f32; 3] = [1.0, 0.0, 2.8];
+/// The fireball's falloff: at half strength a metre away, bright on the
+/// floor and walls it passes ...
+const FIREBALL_FALLOFF: [f32; 3] = [1.0, 0.0, 1.0];
+/// ... and nothing beyond three metres: it lights what it passes, not the
+/// whole room.
+const FIREBALL_REACH: f32 = 3.0;
 
 /// How bright the flash of a hit is at its start, in units of the
 /// fireball's inner shell colour.
@@ -117,11 +123,13 @@ impl PointLight {
                 position: look.centre,
                 color: look.light() + flash.map_or(Vec3::ZERO, flash_color),
                 falloff: FIREBALL_FALLOFF,
+                reach: Some(FIREBALL_REACH),
             }),
             (None, Some(f)) => Some(PointLight {
                 position: f.position,
                 color: flash_color(f),
                 falloff: FIREBALL_FALLOFF,
+                reach: Some(FIREBALL_REACH),
             }),
             (None, None) => None,
         }
@@ -135,6 +143,7 @@ impl Light {
             position: self.position,
             color: self.color,
             falloff: CEILING_FALLOFF,
+            reach: None,
         }
     }
 

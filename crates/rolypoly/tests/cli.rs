@@ -1,6 +1,6 @@
 //! Runs the built `rolypoly` binary the way a user does.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn rolypoly(args: &[&str]) -> Output {
@@ -415,36 +415,59 @@ fn a_scene_can_start_with_the_fireball_flying() {
     assert!(json_lines(&stdout(&plain))[1]["fireball"].is_null());
 }
 
-#[test]
-fn render_with_the_fireball_draws_its_effects() {
-    let (with, without) = (scratch("fireball.png"), scratch("no-fireball.png"));
-    for (out, extra) in [(&with, Some("--fireball")), (&without, None)] {
-        let out_str = out.to_str().expect("UTF-8 path");
-        let mut args = vec![
-            "render", "--time", "0.4", "--size", "160x90", "--out", out_str,
-        ];
-        args.extend(extra);
-        let output = rolypoly(&args);
-        assert!(output.status.success(), "{}", stderr(&output));
-    }
+/// Pixels of two frames whose colour differs by more than `threshold` (of
+/// 255) in any channel.
+fn pixels_differing(a: &Path, b: &Path, threshold: u8) -> usize {
     let (a, b) = (
-        image::open(&with).expect("png").to_rgba8(),
-        image::open(&without).expect("png").to_rgba8(),
+        image::open(a).expect("png").to_rgba8(),
+        image::open(b).expect("png").to_rgba8(),
     );
-    let changed = a
-        .pixels()
+    a.pixels()
         .zip(b.pixels())
         .filter(|(p, q)| {
             p.0[..3]
                 .iter()
                 .zip(&q.0[..3])
-                .any(|(x, y)| x.abs_diff(*y) > 30)
+                .any(|(x, y)| x.abs_diff(*y) > threshold)
         })
-        .count();
-    assert!(
-        changed > 20,
-        "the fireball and its trail changed only {changed} pixels"
-    );
+        .count()
+}
+
+/// The fireball is seen from the default camera: at t = 1.5 s (640 x 360)
+/// it and its effects change at least 2 000 pixels by more than 24 of 255,
+/// and its light alone (against `--no-fireball-light`) at least 3 000 by
+/// more than 8, whatever the balls do (two seeds).
+#[test]
+fn the_fireball_is_seen_from_the_default_camera_and_lights_the_room() {
+    for seed in ["1", "5"] {
+        let frames = [
+            ("without.png", vec![]),
+            ("with.png", vec!["--fireball"]),
+            ("unlit.png", vec!["--fireball", "--no-fireball-light"]),
+        ]
+        .map(|(name, extra)| {
+            let out = scratch(&format!("fireball-seed{seed}-{name}"));
+            let out_str = out.to_str().expect("UTF-8 path").to_owned();
+            let mut args = vec![
+                "render", "--time", "1.5", "--size", "640x360", "--seed", seed, "--out", &out_str,
+            ];
+            args.extend(extra);
+            let output = rolypoly(&args);
+            assert!(output.status.success(), "{}", stderr(&output));
+            out
+        });
+        let [without, with, unlit] = &frames;
+        let seen = pixels_differing(with, without, 24);
+        assert!(
+            seen >= 2000,
+            "seed {seed}: the fireball changed only {seen} pixels"
+        );
+        let lit = pixels_differing(with, unlit, 8);
+        assert!(
+            lit >= 3000,
+            "seed {seed}: its light changed only {lit} pixels"
+        );
+    }
 }
 
 #[test]

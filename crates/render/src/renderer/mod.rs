@@ -130,9 +130,10 @@ struct Globals {
     irradiance_probes: [f32; 4],
 }
 
+/// The light's falloff and its reach (0: none), as the shader reads them.
 fn falloff(light: PointLight) -> [f32; 4] {
     let [c0, c1, c2] = light.falloff;
-    [c0, c1, c2, 0.0]
+    [c0, c1, c2, light.reach.unwrap_or(0.0)]
 }
 
 fn flag(on: bool) -> f32 {
