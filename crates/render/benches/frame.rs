@@ -9,12 +9,15 @@
 //! turn, and with all off, and the all-on rate as a share of the all-off
 //! one; then once more with the balls' depth tested only after their
 //! fragments are traced (`early_ball_depth` off), to show what testing it
-//! first saves. Each draws at least three frames and for at least two
-//! seconds: a software renderer is done within two minutes, and a GPU's
-//! figure averages over hundreds of frames.
+//! first saves. Then each quality level (all effects on), and the shadow
+//! faces' share of a high frame with and without culling: the time a frame
+//! loses to shadows (against one without), over its whole time. Each draws
+//! at least three frames and for at least two seconds: a software renderer
+//! is done within four minutes, and a GPU's figure averages over hundreds
+//! of frames.
 
 use rolypoly_physics::{World, WorldConfig};
-use rolypoly_render::{Camera, Light, RenderSettings, SceneView, Snapshot};
+use rolypoly_render::{Camera, Light, Quality, RenderSettings, SceneView, Snapshot};
 use std::time::{Duration, Instant};
 
 const WIDTH: u32 = 1280;
@@ -101,6 +104,37 @@ fn main() {
             "  early over late",
             "",
             rates[0] / frame.per_second
+        );
+        for level in [Quality::Medium, Quality::Low] {
+            let frame = measure(&mut snapshot(&config, level.settings()), &all_on, &camera);
+            print_row(&format!("  quality {}", level.name()), &frame);
+        }
+        let high = rates[0];
+        let unculled = RenderSettings {
+            cull_shadow_faces: false,
+            ..RenderSettings::default()
+        };
+        let unculled = measure(&mut snapshot(&config, unculled), &all_on, &camera);
+        print_row("  shadow faces not culled", &unculled);
+        let unshadowed = RenderSettings {
+            shadows: false,
+            ..RenderSettings::default()
+        };
+        let unshadowed = measure(&mut snapshot(&config, unshadowed), &all_on, &camera).per_second;
+        // A frame's time is 1 / rate; the shadows' share is what they add.
+        let share = |rate: f64| 100.0 * (1.0 - rate / unshadowed);
+        println!(
+            "{:<36} {:>8} {:>9.0}% {:>13.0}%",
+            "  shadow share, culled / not",
+            "",
+            share(high),
+            share(unculled.per_second)
+        );
+        println!(
+            "{:<36} {:>8} {:>10.2}",
+            "  culled over not",
+            "",
+            high / unculled.per_second
         );
     }
     println!("adapter: {adapter}");

@@ -32,48 +32,58 @@ pub fn face_view_projections(light: Vec3) -> [Mat4; 6] {
     FACES.map(|(dir, up)| projection * glam::camera::rh::view::look_at_mat4(light, light + dir, up))
 }
 
-/// Whether a sphere at `centre` of `radius` can cast into face `face` (as
-/// numbered in [`FACES`]) of the light at `light`: whether it reaches into
-/// the face's square pyramid, whose apex is the light. Exact where it says
-/// no: a sphere wholly behind the face's apex plane, or wholly beyond one
-/// of its side planes, covers none of its texels (a face draws only the
-/// traced sphere's own points, and a mesh lies inside its bounding
-/// sphere). Near the apex it may say yes for a sphere that only grazes the
-/// corner between two planes: drawn, then, into texels it does not cover.
-pub fn casts_into(face: usize, light: Vec3, centre: Vec3, radius: f32) -> bool {
+/// The faces (bit k for face k, as numbered in [`FACES`]) of the light at
+/// `light` that a sphere at `centre` of `radius` can cast into: those whose
+/// square pyramid, with its apex at the light, it reaches into. Exact where
+/// it says no: a sphere wholly behind a face's apex plane, or wholly beyond
+/// one of its side planes, covers none of its texels (a face draws only the
+/// traced sphere's own points, and a mesh lies inside its bounding sphere).
+/// Near the apex it may say yes for a sphere that only grazes the corner
+/// between two planes: drawn, then, into texels it does not cover.
+pub fn faces_reached(light: Vec3, centre: Vec3, radius: f32) -> u8 {
     let d = (centre - light).to_array();
-    let axis = face / 2;
-    let ahead = if face.is_multiple_of(2) {
-        d[axis]
-    } else {
-        -d[axis]
-    };
-    // A side plane through the apex at 45 degrees to the axis: the
-    // distance beyond it is (|other| - ahead) / sqrt 2.
+    let across = d.map(f32::abs);
+    // A side plane through the apex at 45 degrees to the axis: a point is
+    // (|across| - ahead) / sqrt 2 beyond it.
     let reach = radius * std::f32::consts::SQRT_2;
-    ahead > -radius
-        && (0..3)
-            .filter(|&other| other != axis)
-            .all(|other| ahead - d[other].abs() > -reach)
+    let mut faces = 0;
+    for axis in 0..3 {
+        let widest = across[(axis + 1) % 3].max(across[(axis + 2) % 3]) - reach;
+        for (sign, ahead) in [(0, d[axis]), (1, -d[axis])] {
+            if ahead > -radius && ahead > widest {
+                faces |= 1 << (2 * axis + sign);
+            }
+        }
+    }
+    faces
 }
 
-/// Sorts `casters` (each with its bounding sphere's centre and radius) into
-/// `out` face by face, each only into the faces it can cast into (or, with
-/// `cull` off, every one into all six); returns each face's range of `out`.
+/// Sorts `casters` into `out` face by face, each only into the faces it can
+/// cast into with the bounding sphere (centre, radius) `sphere_of` gives
+/// for its index; returns each face's range of `out`. The spheres are
+/// tested once each, then listed face by face.
 pub fn sort_into_faces<T: Copy>(
-    casters: impl Iterator<Item = (T, Vec3, f32)> + Clone,
+    casters: &[T],
+    sphere_of: impl Fn(usize) -> (Vec3, f32),
     light: Vec3,
-    cull: bool,
     out: &mut Vec<T>,
 ) -> [std::ops::Range<u32>; 6] {
+    let reached: Vec<u8> = (0..casters.len())
+        .map(|k| {
+            let (centre, radius) = sphere_of(k);
+            faces_reached(light, centre, radius)
+        })
+        .collect();
     out.clear();
     std::array::from_fn(|face| {
         let start = out.len() as u32;
+        let bit = 1 << face;
         out.extend(
             casters
-                .clone()
-                .filter(|&(_, centre, radius)| !cull || casts_into(face, light, centre, radius))
-                .map(|(caster, ..)| caster),
+                .iter()
+                .zip(&reached)
+                .filter(|(_, faces)| *faces & bit != 0)
+                .map(|(caster, _)| *caster),
         );
         start..out.len() as u32
     })
@@ -186,6 +196,11 @@ impl ShadowCube {
 mod tests {
     use super::*;
 
+    /// Whether a sphere can cast into face `face`.
+    fn casts_into(face: usize, light: Vec3, centre: Vec3, radius: f32) -> bool {
+        faces_reached(light, centre, radius) & (1 << face) != 0
+    }
+
     /// Points spread over a sphere of directions, from a seed.
     fn directions(seed: u32, count: usize) -> Vec<Vec3> {
         let mut state = seed.wrapping_mul(2_654_435_761).max(1);
@@ -241,35 +256,28 @@ mod tests {
     }
 
     #[test]
-    fn culling_off_puts_every_caster_in_every_face_and_on_keeps_fewer() {
+    fn each_face_lists_exactly_the_casters_that_reach_it_in_their_order() {
         let light = Vec3::new(0.0, 3.75, 0.0);
-        let balls: Vec<(usize, Vec3, f32)> = directions(7, 300)
-            .into_iter()
-            .enumerate()
-            .map(|(i, d)| {
-                (
-                    i,
-                    Vec3::new(d.x * 4.0, 0.1 + d.y.abs() * 3.0, d.z * 4.0),
-                    0.1,
-                )
-            })
-            .collect();
-        let mut out = Vec::new();
-        let all = sort_into_faces(balls.iter().copied(), light, false, &mut out);
-        assert!(all.iter().all(|r| r.len() == balls.len()));
-        let culled = sort_into_faces(balls.iter().copied(), light, true, &mut out);
-        assert!(culled[2].is_empty(), "nothing above the light: {culled:?}");
-        let total: usize = culled.iter().map(|r| r.len()).sum();
-        assert!(total >= balls.len() && total < 2 * balls.len(), "{total}");
-        // Each face's range lists its casters in their own order.
-        for (face, range) in culled.iter().enumerate() {
-            let listed = &out[range.start as usize..range.end as usize];
-            assert!(listed.windows(2).all(|w| w[0] < w[1]));
-            assert!(
-                listed
+        for seed in [7, 8, 9] {
+            let balls: Vec<(Vec3, f32)> = directions(seed, 300)
+                .into_iter()
+                .map(|d| (Vec3::new(d.x * 4.0, 0.1 + d.y.abs() * 3.0, d.z * 4.0), 0.1))
+                .collect();
+            let indices: Vec<usize> = (0..balls.len()).collect();
+            let mut out = Vec::new();
+            let faces = sort_into_faces(&indices, |k| balls[k], light, &mut out);
+            assert!(faces[2].is_empty(), "nothing above the light: {faces:?}");
+            let total: usize = faces.iter().map(|r| r.len()).sum();
+            assert!(total >= balls.len() && total < 2 * balls.len(), "{total}");
+            for (face, range) in faces.iter().enumerate() {
+                let listed = &out[range.start as usize..range.end as usize];
+                let expected: Vec<usize> = indices
                     .iter()
-                    .all(|&i| casts_into(face, light, balls[i].1, balls[i].2))
-            );
+                    .copied()
+                    .filter(|&k| casts_into(face, light, balls[k].0, balls[k].1))
+                    .collect();
+                assert_eq!(listed, expected, "face {face}");
+            }
         }
     }
 

@@ -316,8 +316,11 @@ impl Renderer {
             });
         let mut draw_calls = 0;
         if self.settings.shadows {
-            let faces = self.sort_shadow_casters(gpu, view, &ranges);
-            draw_calls += self.shadow_pass(&mut encoder, &faces);
+            let culled = self
+                .settings
+                .cull_shadow_faces
+                .then(|| self.sort_shadow_casters(gpu, view, &ranges));
+            draw_calls += self.shadow_pass(&mut encoder, &ranges, culled.as_ref());
         }
         let targets = self
             .targets
@@ -389,35 +392,26 @@ impl Renderer {
     }
 
     /// Lists the balls and tumblers face by face, each in the faces it can
-    /// cast into (see [`shadow::casts_into`]), and uploads the lists.
+    /// cast into (see [`shadow::faces_reached`]), and uploads the lists.
     fn sort_shadow_casters(&mut self, gpu: &Gpu, view: &SceneView, ranges: &Ranges) -> FaceRanges {
         let light = view.light.position;
-        let cull = self.settings.cull_shadow_faces;
+        let ball_items = &self.balls.items;
         let balls = shadow::sort_into_faces(
-            self.balls.items.iter().map(|b| {
-                let (centre, radius) = b.sphere();
-                (*b, centre, radius)
-            }),
+            ball_items,
+            |k| ball_items[k].sphere(),
             light,
-            cull,
             &mut self.shadow_balls.items,
         );
         let (centre, radius) = self.tumbler_bounds;
         let tumbler_instances =
             &self.instances.items[ranges.tumblers.start as usize..ranges.tumblers.end as usize];
         let tumblers = shadow::sort_into_faces(
-            tumbler_instances
-                .iter()
-                .zip(&view.tumblers)
-                .map(|(instance, t)| {
-                    (
-                        *instance,
-                        t.model().transform_point3(centre),
-                        radius * t.scale,
-                    )
-                }),
+            tumbler_instances,
+            |k| {
+                let t = &view.tumblers[k];
+                (t.model().transform_point3(centre), radius * t.scale)
+            },
             light,
-            cull,
             &mut self.shadow_tumblers.items,
         );
         self.shadow_balls.upload(gpu);
@@ -426,8 +420,18 @@ impl Renderer {
     }
 
     /// The ceiling light's six shadow faces: the balls and the tumblers
-    /// (the room's walls cast no shadow inside it).
-    fn shadow_pass(&self, encoder: &mut wgpu::CommandEncoder, faces: &FaceRanges) -> u32 {
+    /// (the room's walls cast no shadow inside it), each only in the faces
+    /// `culled` lists it in, or with none, every one in every face.
+    fn shadow_pass(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        ranges: &Ranges,
+        culled: Option<&FaceRanges>,
+    ) -> u32 {
+        let (balls, tumblers) = match culled {
+            Some(_) => (&self.shadow_balls.buffer, &self.shadow_tumblers.buffer),
+            None => (&self.balls.buffer, &self.instances.buffer),
+        };
         let mut draw_calls = 0;
         for face in 0..6 {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -446,12 +450,15 @@ impl Renderer {
                 multiview_mask: None,
             });
             pass.set_bind_group(0, &self.shadow_cube.face_bind_groups[face], &[]);
-            pass.set_vertex_buffer(1, self.shadow_balls.buffer.slice(..));
+            pass.set_vertex_buffer(1, balls.slice(..));
             pass.set_pipeline(&self.pipelines.ball_shadow);
-            draw_calls += draw(&mut pass, &self.quad, faces.balls[face].clone());
-            pass.set_vertex_buffer(1, self.shadow_tumblers.buffer.slice(..));
+            let ball_range = culled.map_or(self.balls.range(), |c| c.balls[face].clone());
+            draw_calls += draw(&mut pass, &self.quad, ball_range);
+            pass.set_vertex_buffer(1, tumblers.slice(..));
             pass.set_pipeline(&self.pipelines.shadow);
-            draw_calls += draw(&mut pass, &self.tumbler, faces.tumblers[face].clone());
+            let tumbler_range =
+                culled.map_or(ranges.tumblers.clone(), |c| c.tumblers[face].clone());
+            draw_calls += draw(&mut pass, &self.tumbler, tumbler_range);
         }
         draw_calls
     }
