@@ -207,6 +207,14 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
     s.xdotool(&["windowfocus", "--sync", &w]);
     s.settle();
 
+    // Once a second the frame rate, and the quality level auto chose.
+    let rate = s.expect("the frame rate", |v| v["event"] == "frame_rate");
+    assert!(number(&rate, "fps") > 0.0, "{rate}");
+    assert!(
+        ["high", "medium", "low"].contains(&rate["quality"].as_str().unwrap_or("")),
+        "{rate}"
+    );
+
     // Mouse look: move right of the centre; the view turns.
     s.xdotool(&["mousemove", "--window", &w, "240", "135"]);
     s.settle();

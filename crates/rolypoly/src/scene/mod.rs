@@ -291,6 +291,24 @@ mod tests {
     }
 
     #[test]
+    fn a_quality_level_is_read_by_name_and_another_word_is_a_clear_error() {
+        for name in QualityChoice::NAMES {
+            let parsed = parse(&format!("[render]\nquality = \"{name}\"\n")).unwrap();
+            assert_eq!(parsed.quality.name(), name);
+        }
+        let error = error_text("[render]\nquality = \"ultra\"\n");
+        assert!(
+            error.contains("test.toml:2")
+                && error.contains("render.quality")
+                && error.contains("`ultra`")
+                && error.contains("high, medium, low, auto"),
+            "{error}"
+        );
+        let error = error_text("[render]\nquality = 3\n");
+        assert!(error.contains("a string"), "{error}");
+    }
+
+    #[test]
     fn one_effects_key_changes_only_that_key() {
         let parsed = parse("[effects.wall_hit]\nrate = 500\n").unwrap();
         let mut expected = Scene::default();
