@@ -128,6 +128,24 @@ impl Grid {
         &self.sorted
     }
 
+    /// The cells that hold a ball, each once, by its lowest corner, and
+    /// the cells' edge: the sorted balls run cell by cell.
+    pub fn occupied_cells(&self) -> (Vec<DVec3>, f64) {
+        let mut cells: Vec<u32> = self
+            .sorted
+            .iter()
+            .map(|&b| self.ball_cell[b as usize])
+            .collect();
+        cells.dedup();
+        let [nx, ny, _] = self.dims;
+        let corner = |c: u32| {
+            let c = c as usize;
+            let (x, y, z) = (c % nx, (c / nx) % ny, c / (nx * ny));
+            self.origin + DVec3::new(x as f64, y as f64, z as f64) * self.cell
+        };
+        (cells.into_iter().map(corner).collect(), self.cell)
+    }
+
     /// The inverse of [`Grid::order`]: per ball, its slot (`NO_SLOT` if it
     /// is not alive).
     pub fn ball_slots(&self) -> &[u32] {

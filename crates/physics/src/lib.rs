@@ -40,4 +40,4 @@ pub use repose::angle_of_repose;
 pub use rng::Rng;
 pub use room::{Room, Surface};
 pub use tumbler::{Grip, Tumbler, TumblerShape, axis_extent};
-pub use world::{BuildError, Energy, Pick, World, placement_problem};
+pub use world::{BuildError, ContactKind, ContactProbe, Energy, Pick, World, placement_problem};

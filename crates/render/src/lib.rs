@@ -10,6 +10,7 @@
 #![warn(missing_docs)]
 
 mod camera;
+mod debug_view;
 mod gpu;
 mod instances;
 mod irradiance;
@@ -26,6 +27,7 @@ mod tumbler_mesh;
 mod view;
 
 pub use camera::Camera;
+pub use debug_view::{DebugLayer, DebugViews, LineVertex, REST_SPEED, speed_color};
 pub use gpu::{Gpu, HDR_FORMAT, RenderError};
 pub use mesh::{MeshData, Vertex};
 pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};

@@ -99,6 +99,8 @@ mod tests {
             particles: Vec::new(),
             fireball: None,
             fireball_light: None,
+            debug_lines: Vec::new(),
+            debug_lines_over: Vec::new(),
         }
     }
 

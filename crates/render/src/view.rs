@@ -7,6 +7,8 @@ use rolypoly_fx::{Effects, FireballLook, ParticleKind};
 use rolypoly_fx::{Flash, SHELL_COLORS};
 use rolypoly_physics::World;
 
+use crate::debug_view::LineVertex;
+
 /// The point light's constants (a scene file's `[light]`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightConfig {
@@ -246,6 +248,11 @@ pub struct SceneView {
     pub fireball: Option<FireballLook>,
     /// The fireball's light (drawn where `light.fireball_light` says so).
     pub fireball_light: Option<PointLight>,
+    /// The debug views' line segments, two vertices each (see
+    /// [`SceneView::with_debug`]).
+    pub debug_lines: Vec<LineVertex>,
+    /// As `debug_lines`, drawn over everything (what lies inside a body).
+    pub debug_lines_over: Vec<LineVertex>,
 }
 
 impl SceneView {
@@ -288,6 +295,8 @@ impl SceneView {
             particles: Vec::new(),
             fireball_light: PointLight::of_fireball(fireball.as_ref(), None),
             fireball,
+            debug_lines: Vec::new(),
+            debug_lines_over: Vec::new(),
         }
     }
 

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Parser, Subcommand};
 
 use crate::scene::Overrides;
-use rolypoly_render::{LightConfig, QualityChoice};
+use rolypoly_render::{DebugViews, LightConfig, QualityChoice};
 
 /// Help section of the options shared by every command.
 const SCENE_HEADING: &str = "Scene options";
@@ -340,6 +340,11 @@ pub struct FrameArgs {
     /// Launch the fireball from the scene's spawn point at time 0.
     #[arg(long)]
     pub fireball: bool,
+
+    /// Draw debug views of what happens inside the step, a comma-separated
+    /// list of: contacts, impulses, velocities, grid, rest, com.
+    #[arg(long, value_name = "LIST", value_parser = parse_show)]
+    pub show: Option<DebugViews>,
 }
 
 #[derive(Debug, Args)]
@@ -347,6 +352,11 @@ pub struct MakeTumblerObjArgs {
     /// The OBJ file to write.
     #[arg(long, value_name = "FILE.obj")]
     pub out: PathBuf,
+}
+
+/// Debug views by name, comma-separated.
+fn parse_show(text: &str) -> Result<DebugViews, String> {
+    DebugViews::parse(text)
 }
 
 /// A quality level by name.

@@ -8,7 +8,7 @@ use anyhow::Context;
 use glam::Vec3;
 use rolypoly_physics::WorldConfig;
 use rolypoly_render::{
-    Camera, LightConfig, MeshData, Quality, QualityChoice, RenderSettings, Snapshot,
+    Camera, DebugViews, LightConfig, MeshData, Quality, QualityChoice, RenderSettings, Snapshot,
 };
 
 use crate::cli::FrameArgs;
@@ -21,6 +21,8 @@ pub struct Frames {
     camera: Camera,
     shadows: bool,
     level: Quality,
+    /// The debug views drawn over every frame.
+    debug: DebugViews,
 }
 
 impl Frames {
@@ -57,6 +59,7 @@ impl Frames {
             camera,
             shadows: settings.shadows,
             level,
+            debug: args.show.unwrap_or_default(),
         })
     }
 
@@ -82,7 +85,9 @@ impl Frames {
         light: &LightConfig,
         camera: &Camera,
     ) -> anyhow::Result<image::RgbaImage> {
-        Ok(self.snapshot.capture(&sim.view(light), camera)?)
+        Ok(self
+            .snapshot
+            .capture(&sim.view_showing(light, &self.debug), camera)?)
     }
 
     /// How the frames are drawn, in words, and on what.

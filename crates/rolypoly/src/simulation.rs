@@ -4,7 +4,7 @@
 
 use rolypoly_fx::{Effects, EffectsConfig};
 use rolypoly_physics::{Event, World};
-use rolypoly_render::{LightConfig, SceneView};
+use rolypoly_render::{DebugViews, LightConfig, SceneView};
 
 /// The world and its effects.
 pub struct Simulation {
@@ -49,5 +49,12 @@ impl Simulation {
         SceneView::from_world(&self.world, self.world.grabbed())
             .with_effects(&self.fx, &self.world)
             .with_light(light)
+    }
+
+    /// As [`Simulation::view`], with the debug views `debug` shows of the
+    /// last step.
+    pub fn view_showing(&self, light: &LightConfig, debug: &DebugViews) -> SceneView {
+        self.view(light)
+            .with_debug(&self.world, &self.events, debug)
     }
 }

@@ -252,6 +252,40 @@ impl WarmStart {
             .map_or(Held::default(), |w| w.impulses)
     }
 
+    /// Each ball number recorded, with the slot its impulses are kept under.
+    fn recorded_balls(&self) -> impl Iterator<Item = (u32, usize)> + '_ {
+        (0..self.slot_of.len() as u32).filter_map(|ball| Some((ball, self.slot(ball)?)))
+    }
+
+    /// Every pair of balls recorded as pushing: the lower ball number, the
+    /// higher, both stages' normal impulses, and both stages' friction
+    /// impulses summed as they act on the lower-numbered ball (zero where
+    /// none were kept). For the debug views.
+    pub fn recorded_pairs(&self) -> impl Iterator<Item = (u32, u32, Held, Vec3)> + '_ {
+        self.recorded_balls().flat_map(move |(ball, slot)| {
+            let range = self.kept[slot].partner_range();
+            range.map(move |k| {
+                let partner = self.partners[k];
+                let friction = self
+                    .friction
+                    .get(k)
+                    .map_or(Vec3::ZERO, |[a, b]| a.tangent + b.tangent);
+                let (lo, hi) = (ball.min(partner.ball), ball.max(partner.ball));
+                (lo, hi, partner.impulses, friction)
+            })
+        })
+    }
+
+    /// Every ball and surface recorded as pushing, with both stages'
+    /// impulses. For the debug views.
+    pub fn recorded_walls(&self) -> impl Iterator<Item = (u32, Surface, Held)> + '_ {
+        self.recorded_balls().flat_map(move |(ball, slot)| {
+            self.walls[self.kept[slot].wall_range()]
+                .iter()
+                .map(move |w| (ball, w.surface, w.impulses))
+        })
+    }
+
     /// The impulse to start from, given one kept: its share (see
     /// [`WarmStart::weaken`]).
     pub fn share(&self, impulse: f32) -> f64 {
@@ -418,6 +452,15 @@ mod tests {
         assert_eq!(w.wall_start(2, Surface::Left), both(3.0));
         assert_eq!(w.wall_start(2, Surface::Ceiling), both(0.0));
         assert_eq!(w.wall_start(3, Surface::Floor), both(0.0));
+        // Listed whole, by ball number, the pair that did not push left out.
+        let mut pairs: Vec<_> = w.recorded_pairs().map(|(a, b, f, _)| (a, b, f)).collect();
+        pairs.sort_by_key(|p| (p.0, p.1));
+        assert_eq!(pairs, [(0, 2, [1.5, 3.0]), (1, 3, [2.5, 5.0])]);
+        let mut walls: Vec<_> = w.recorded_walls().collect();
+        walls.sort_by_key(|w| w.0);
+        assert_eq!(walls.len(), 3);
+        assert_eq!(walls[0], (1, Surface::Back, [0.5, 1.0]));
+        assert!(walls[1..].iter().all(|w| w.0 == 2));
         assert_eq!(w.wall_start(4, Surface::Floor), both(0.0));
         w.weaken(0.5);
         assert_eq!(w.pair_start(3, 1), both(1.25));

@@ -49,6 +49,7 @@ mod fireball_flight;
 mod flight;
 mod hand;
 mod impacts;
+mod inspect;
 mod live;
 mod overlaps;
 mod pour;
@@ -56,6 +57,7 @@ mod report;
 mod spawn;
 
 pub use hand::Pick;
+pub use inspect::{ContactKind, ContactProbe};
 pub use spawn::placement_problem;
 
 /// A ball this close to a wall is touching it (metres).

@@ -165,10 +165,15 @@ pub struct Renderer {
     /// face it casts into.
     shadow_balls: InstanceBuffer<BallInstance>,
     shadow_tumblers: InstanceBuffer<Instance>,
+    /// The debug views' line segments (see [`crate::debug_view`]).
+    lines: VertexBuffer,
     /// The tumbler mesh's bounding sphere, in its own space.
     tumbler_bounds: (glam::Vec3, f32),
     targets: Option<Targets>,
 }
+
+/// The debug views' vertices: filled and uploaded as instances are.
+type VertexBuffer = InstanceBuffer<crate::debug_view::LineVertex>;
 
 /// Where each face's casters lie in the shadow lists.
 struct FaceRanges {
@@ -249,6 +254,7 @@ impl Renderer {
             balls: InstanceBuffer::new(device, "balls"),
             shadow_balls: InstanceBuffer::new(device, "shadow balls"),
             shadow_tumblers: InstanceBuffer::new(device, "shadow tumblers"),
+            lines: InstanceBuffer::new(device, "debug lines"),
             tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
         }
@@ -293,6 +299,11 @@ impl Renderer {
         self.instances.upload(gpu);
         instances::fill_balls(&mut self.balls.items, view);
         self.balls.upload(gpu);
+        self.lines.items.clear();
+        self.lines.items.extend_from_slice(&view.debug_lines);
+        self.lines.items.extend_from_slice(&view.debug_lines_over);
+        self.lines.upload(gpu);
+        let lines_over = view.debug_lines.len() as u32;
         let faces = shadow::face_view_projections(view.light.position);
         self.shadow_cube
             .update(&gpu.queue, &faces, view.light.position);
@@ -326,7 +337,7 @@ impl Renderer {
             .targets
             .as_ref()
             .ok_or_else(|| RenderError::Readback("no render targets".into()))?;
-        draw_calls += self.scene_pass(&mut encoder, targets, &ranges);
+        draw_calls += self.scene_pass(&mut encoder, targets, &ranges, lines_over);
         if view.light.occlusion {
             draw_calls +=
                 self.occlusion
@@ -464,12 +475,14 @@ impl Renderer {
     }
 
     /// The lit scene into the HDR target, and the surfaces' normals and
-    /// distances for the occlusion, resolved there from their samples.
+    /// distances for the occlusion, resolved there from their samples; the
+    /// debug lines, those from `lines_over` on drawn over everything.
     fn scene_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         targets: &Targets,
         ranges: &Ranges,
+        lines_over: u32,
     ) -> u32 {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("scene"),
@@ -505,6 +518,19 @@ impl Renderer {
         pass.set_pipeline(&self.pipelines.ball);
         draw_calls += draw(&mut pass, &self.quad, self.balls.range());
         pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
+        // ... the debug views' lines over what is lit ...
+        let all_lines = self.lines.items.len() as u32;
+        pass.set_vertex_buffer(0, self.lines.buffer.slice(..));
+        for (pipeline, vertices) in [
+            (&self.pipelines.lines, 0..lines_over),
+            (&self.pipelines.lines_over, lines_over..all_lines),
+        ] {
+            if !vertices.is_empty() {
+                pass.set_pipeline(pipeline);
+                pass.draw(vertices, 0..1);
+                draw_calls += 1;
+            }
+        }
         // ... then what glows and is not lit (the bulb, the fireball's heart) ...
         pass.set_pipeline(&self.pipelines.emissive);
         draw_calls += draw(&mut pass, &self.sphere, ranges.lamps.clone());

@@ -114,7 +114,7 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 17] = [
+const KEYS: [(&str, &str); 18] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
@@ -127,6 +127,10 @@ const KEYS: [(&str, &str); 17] = [
     ("R", "record the inputs / stop and write them"),
     ("G", "grab mode: drag tumblers with the left button"),
     ("I", "re-initialise the balls"),
+    (
+        "1 to 6",
+        "debug views: contacts, impulses, velocities, grid, rest, centre of mass",
+    ),
     ("H or F1", "this help"),
     ("F12", "screenshot (PNG)"),
     ("Esc", "release the mouse"),

@@ -8,6 +8,8 @@
 use std::ops::RangeInclusive;
 use std::path::PathBuf;
 
+use rolypoly_render::{DebugLayer, DebugViews};
+
 use crate::sandbox::{SHIPPED_SCENES, Sandbox, THROW_SPEEDS, TIME_SCALES};
 use crate::scene::Scene;
 use crate::scene::keys::{Control, KEYS, Slot, Takes};
@@ -52,6 +54,8 @@ pub struct Panel {
     save_path: String,
     /// What the last action or refused change said.
     pub message: Option<String>,
+    /// The debug views shown (keys 1 to 6).
+    pub debug: DebugViews,
 }
 
 impl Panel {
@@ -65,6 +69,7 @@ impl Panel {
             scenes,
             save_path: "my-scene.toml".into(),
             message: None,
+            debug: DebugViews::default(),
         }
     }
 
@@ -161,6 +166,23 @@ impl Panel {
         if scene != *sandbox.scene() {
             self.message = sandbox.set_scene(scene).err().map(|e| e.to_string());
         }
+
+        ui.separator();
+        ui.strong("Inside the step");
+        for (k, layer) in DebugLayer::ALL.into_iter().enumerate() {
+            let mut on = self.debug.shows(layer);
+            if ui
+                .checkbox(&mut on, format!("{} ({})", layer.name(), k + 1))
+                .changed()
+            {
+                self.debug.set(layer, on);
+            }
+        }
+        ui.add(
+            egui::Slider::new(&mut self.debug.impulse_scale, 0.05..=20.0)
+                .logarithmic(true)
+                .text("impulse scale (1: a ball's weight is its radius)"),
+        );
 
         ui.separator();
         ui.strong("Throwing (B)");

@@ -14,7 +14,7 @@ use winit::window::CursorGrabMode;
 use super::App;
 use crate::sandbox::Input;
 use crate::window::panel::{fits, too_small};
-use rolypoly_render::Camera;
+use rolypoly_render::{Camera, DebugLayer};
 
 /// What the mouse does.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -162,6 +162,27 @@ impl App {
                 self.log.say("grab_mode", json!({ "on": next == MouseMode::Grab, "tumblers_on_screen": self.tumblers_on_screen() }));
             }
             KeyCode::KeyI => self.restart(),
+            KeyCode::Digit1
+            | KeyCode::Digit2
+            | KeyCode::Digit3
+            | KeyCode::Digit4
+            | KeyCode::Digit5
+            | KeyCode::Digit6 => {
+                let digits = [
+                    KeyCode::Digit1,
+                    KeyCode::Digit2,
+                    KeyCode::Digit3,
+                    KeyCode::Digit4,
+                    KeyCode::Digit5,
+                    KeyCode::Digit6,
+                ];
+                let k = digits.iter().position(|&d| d == code).unwrap_or(0);
+                let layer = DebugLayer::ALL[k];
+                let on = !self.panel.debug.shows(layer);
+                self.panel.debug.set(layer, on);
+                self.log
+                    .say("debug_view", json!({ "view": layer.name(), "on": on }));
+            }
             KeyCode::KeyH | KeyCode::F1 => self.hud_state.help = !self.hud_state.help,
             KeyCode::F12 => {
                 if let Err(e) = self.screenshot() {

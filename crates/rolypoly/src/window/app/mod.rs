@@ -223,7 +223,7 @@ impl App {
         }
 
         let sim = &self.sandbox.sim;
-        let view = sim.view(&self.sandbox.scene().light);
+        let view = sim.view_showing(&self.sandbox.scene().light, &self.panel.debug);
         let camera = self.camera.camera();
         self.hud_state.frame(
             elapsed,
