@@ -40,4 +40,6 @@ pub use repose::angle_of_repose;
 pub use rng::Rng;
 pub use room::{Room, Surface};
 pub use tumbler::{Grip, Tumbler, TumblerShape, axis_extent};
-pub use world::{BuildError, ContactKind, ContactProbe, Energy, Pick, World, placement_problem};
+pub use world::{
+    BallPick, BuildError, ContactKind, ContactProbe, Energy, Pick, World, placement_problem,
+};

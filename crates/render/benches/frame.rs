@@ -13,11 +13,14 @@
 //! faces' share of a high frame with and without culling: the time a frame
 //! loses to shadows (against one without), over its whole time. Each draws
 //! at least three frames and for at least two seconds: a software renderer
-//! is done within four minutes, and a GPU's figure averages over hundreds
-//! of frames.
+//! is done within five minutes, and a GPU's figure averages over hundreds
+//! of frames. Last, every debug view at once, and the processor's time to
+//! build their lines from the world.
 
 use rolypoly_physics::{World, WorldConfig};
-use rolypoly_render::{Camera, Light, Quality, RenderSettings, SceneView, Snapshot};
+use rolypoly_render::{
+    Camera, DebugLayer, DebugViews, Light, Quality, RenderSettings, SceneView, Snapshot,
+};
 use std::time::{Duration, Instant};
 
 const WIDTH: u32 = 1280;
@@ -135,6 +138,27 @@ fn main() {
             "  culled over not",
             "",
             high / unculled.per_second
+        );
+        let mut views = DebugViews::default();
+        for layer in DebugLayer::ALL {
+            views.set(layer, true);
+        }
+        let started = Instant::now();
+        let builds = 5;
+        let mut shown = all_on.clone();
+        for _ in 0..builds {
+            shown = all_on.clone().with_debug(&world, &[], &views);
+        }
+        let build_ms = started.elapsed().as_secs_f64() * 1e3 / f64::from(builds);
+        let frame = measure(&mut snap, &shown, &camera);
+        print_row("  every debug view", &frame);
+        println!(
+            "{:<36} {:>8} {:>10.2} {:>14.3} {:>11}",
+            "  views over none, build ms, lines",
+            "",
+            frame.per_second / high,
+            build_ms,
+            (shown.debug_lines.len() + shown.debug_lines_over.len()) / 2
         );
     }
     println!("adapter: {adapter}");

@@ -56,7 +56,7 @@ mod pour;
 mod report;
 mod spawn;
 
-pub use hand::Pick;
+pub use hand::{BallPick, Pick};
 pub use inspect::{ContactKind, ContactProbe};
 pub use spawn::placement_problem;
 
@@ -169,6 +169,8 @@ pub struct World {
     retakes: u64,
     /// The random balls still to pour, if the scene pours them.
     pour: pour::Pour,
+    /// The ball the hand holds, if it holds one.
+    ball_hold: Option<hand::BallHold>,
     scratch: StepScratch,
 }
 
@@ -271,6 +273,7 @@ impl World {
             warm_next: Default::default(),
             retakes: 0,
             pour: pour::Pour::default(),
+            ball_hold: None,
             scratch,
             room,
             shape: Arc::new(shape),
@@ -369,6 +372,7 @@ impl World {
     pub fn reset_balls(&mut self) -> Result<(), BuildError> {
         let total = self.config.balls.total();
         self.balls.truncate(total);
+        self.ball_hold = None;
         self.scratch.hit_wall.truncate(total);
         // New balls under old numbers: last step's impulses mean nothing now.
         for w in [&mut self.warm, &mut self.warm_next] {
@@ -447,7 +451,9 @@ impl World {
     fn step_here(&mut self) {
         let dt = self.config.solver.dt;
         self.pour_due_balls();
-        if self.grabbed().is_some() {
+        // The hand feeds energy in: a held step is not held to the world's.
+        self.pull_held_ball(dt);
+        if self.grabbed().is_some() || self.ball_hold.is_some() {
             self.advance(dt, true, None);
         } else {
             let before = self.energy().total();
