@@ -39,7 +39,12 @@ pub enum Input {
         /// The point held (m).
         point: [f64; 3],
     },
-    /// The held tumbler pulled towards `to`.
+    /// The left button on ball `ball`: the hand holds it by its centre.
+    GrabBall {
+        /// The ball's number.
+        ball: usize,
+    },
+    /// The held tumbler or ball pulled towards `to`.
     Drag {
         /// The point the hand pulls towards (m).
         to: [f64; 3],

@@ -123,6 +123,7 @@ impl Sandbox {
                 self.sim.world.throw_ball(vector(*from), velocity);
             }
             Input::Grab { tumbler, point } => self.sim.world.grab(*tumbler, vector(*point)),
+            Input::GrabBall { ball } => self.sim.world.hold_ball(*ball),
             Input::Drag { to } => self.sim.world.drag_to(vector(*to)),
             Input::Release => self.sim.world.release(),
             Input::Restart => self.rebuild_or_reset()?,

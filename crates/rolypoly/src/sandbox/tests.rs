@@ -209,6 +209,16 @@ fn scripted_session(s: &mut Sandbox, rng: &mut rolypoly_physics::Rng) {
             frame(s, 1);
         }
         s.apply(Input::Release).unwrap();
+        // The hand takes a ball, swings it up and lets it fly.
+        let ball = round % s.world().balls().len().max(1);
+        let at = s.world().balls().positions()[ball];
+        s.apply(Input::GrabBall { ball }).unwrap();
+        for k in 0..8 {
+            let to = at + DVec3::new(0.05 * f64::from(k), 0.04 * f64::from(k), 0.0);
+            s.apply(Input::Drag { to: to.to_array() }).unwrap();
+            frame(s, 1);
+        }
+        s.apply(Input::Release).unwrap();
         s.playback.set_paused(true);
         s.playback.step_once();
         frame(s, 3);

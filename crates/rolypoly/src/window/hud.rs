@@ -16,6 +16,8 @@ pub struct HudState {
     pub render_cpu: f64,
     /// The quality level drawn, and why.
     pub quality: String,
+    /// What the hand holds, if anything: its facts.
+    pub held: Option<String>,
     pub balls_alive: usize,
     pub balls_total: usize,
     pub particles: (usize, usize),
@@ -60,6 +62,7 @@ impl HudState {
             step_time: 0.0,
             render_cpu: 0.0,
             quality: String::new(),
+            held: None,
             balls_alive: balls,
             balls_total: balls,
             particles: (0, 0),
@@ -125,7 +128,10 @@ const KEYS: [(&str, &str); 18] = [
     ("[ and ]", "slower, faster (1/16x to 4x)"),
     ("Tab", "sandbox panel: scenes, settings, save"),
     ("R", "record the inputs / stop and write them"),
-    ("G", "grab mode: drag tumblers with the left button"),
+    (
+        "G",
+        "grab mode: drag a tumbler or a ball with the left button",
+    ),
     ("I", "re-initialise the balls"),
     (
         "1 to 6",
@@ -206,6 +212,9 @@ impl Hud {
                         1e3 * s.render_cpu
                     ));
                     ui.label(&s.quality);
+                    if let Some(held) = &s.held {
+                        ui.label(held);
+                    }
                     ui.label(format!("balls {} of {}", s.balls_alive, s.balls_total));
                     ui.label(format!(
                         "particles {} of {} ({} dropped)",

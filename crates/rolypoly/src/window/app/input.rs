@@ -11,7 +11,7 @@ use winit::event_loop::ActiveEventLoop;
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::CursorGrabMode;
 
-use super::App;
+use super::{App, DragPlane};
 use crate::sandbox::Input;
 use crate::window::panel::{fits, too_small};
 use rolypoly_render::{Camera, DebugLayer};
@@ -223,8 +223,8 @@ impl App {
             }
             MouseMode::Grab => {
                 self.cursor = at;
-                if let Some(height) = self.drag_height
-                    && let Some(target) = self.cursor_on_plane(height)
+                if let Some(plane) = self.drag_plane
+                    && let Some(target) = self.cursor_on_plane(plane)
                 {
                     let _ = self.sandbox.apply(Input::Drag {
                         to: target.to_array(),
@@ -235,14 +235,16 @@ impl App {
         }
     }
 
-    /// Where the ray under our cursor meets the horizontal plane at `height`.
-    pub(super) fn cursor_on_plane(&self, height: f64) -> Option<DVec3> {
+    /// Where the ray under our cursor meets the drag plane `plane`.
+    pub(super) fn cursor_on_plane(&self, plane: DragPlane) -> Option<DVec3> {
         let (origin, dir) = self.camera.camera().ray(self.cursor, self.viewport());
-        if dir.y.abs() < 1e-4 {
+        let (origin, dir) = (origin.as_dvec3(), dir.as_dvec3());
+        let across = dir.dot(plane.normal);
+        if across.abs() < 1e-4 {
             return None;
         }
-        let t = (height as f32 - origin.y) / dir.y;
-        (t > 0.0).then(|| (origin + dir * t).as_dvec3())
+        let t = (plane.point - origin).dot(plane.normal) / across;
+        (t > 0.0).then(|| origin + dir * t)
     }
 
     pub(super) fn button(&mut self, button: MouseButton, state: ElementState) {
@@ -254,23 +256,7 @@ impl App {
                 self.set_mode(MouseMode::Look);
                 self.log.say("mouse", json!({ "captured": true }));
             }
-            (MouseMode::Grab, ElementState::Pressed) => {
-                let (origin, dir) = self.camera.camera().ray(self.cursor, self.viewport());
-                if let Some(pick) = self
-                    .sandbox
-                    .sim
-                    .world
-                    .pick(origin.as_dvec3(), dir.as_dvec3())
-                {
-                    let _ = self.sandbox.apply(Input::Grab {
-                        tumbler: pick.tumbler,
-                        point: pick.point.to_array(),
-                    });
-                    self.drag_height = Some(pick.point.y);
-                    let at = self.sandbox.sim.world.tumblers()[pick.tumbler].bottom_center();
-                    self.log.say("grabbed", json!({ "tumbler": pick.tumbler, "at": [at.x, at.z], "point": pick.point.to_array() }));
-                }
-            }
+            (MouseMode::Grab, ElementState::Pressed) => self.grab_under_cursor(),
             (MouseMode::Grab, ElementState::Released) => self.release_tumbler(),
             _ => {}
         }
@@ -301,14 +287,66 @@ impl App {
             .collect()
     }
 
-    pub(super) fn release_tumbler(&mut self) {
-        if let Some(index) = self.sandbox.sim.world.grabbed() {
-            let _ = self.sandbox.apply(Input::Release);
-            let at = self.sandbox.sim.world.tumblers()[index].bottom_center();
-            self.log
-                .say("released", json!({ "tumbler": index, "at": [at.x, at.z] }));
+    /// The left button in grab mode: the hand takes the nearest tumbler or
+    /// ball under the cursor.
+    fn grab_under_cursor(&mut self) {
+        let (origin, dir) = self.camera.camera().ray(self.cursor, self.viewport());
+        let (origin, dir) = (origin.as_dvec3(), dir.as_dvec3());
+        let world = &self.sandbox.sim.world;
+        let tumbler = world.pick(origin, dir);
+        let ball = world.pick_ball(origin, dir);
+        match (tumbler, ball) {
+            (Some(pick), b) if b.is_none_or(|b| pick.distance <= b.distance) => {
+                let _ = self.sandbox.apply(Input::Grab {
+                    tumbler: pick.tumbler,
+                    point: pick.point.to_array(),
+                });
+                self.drag_plane = Some(DragPlane {
+                    point: pick.point,
+                    normal: DVec3::Y,
+                });
+                let at = self.sandbox.sim.world.tumblers()[pick.tumbler].bottom_center();
+                self.log.say("grabbed", json!({ "tumbler": pick.tumbler, "at": [at.x, at.z], "point": pick.point.to_array() }));
+            }
+            (_, Some(pick)) => {
+                let _ = self.sandbox.apply(Input::GrabBall { ball: pick.ball });
+                let centre = self.sandbox.sim.world.balls().positions()[pick.ball];
+                self.drag_plane = Some(DragPlane {
+                    point: centre,
+                    normal: self.camera.forward().as_dvec3(),
+                });
+                self.log.say(
+                    "grabbed",
+                    json!({ "ball": pick.ball, "point": pick.point.to_array(), "centre": centre.to_array() }),
+                );
+            }
+            _ => {}
         }
-        self.drag_height = None;
+    }
+
+    pub(super) fn release_tumbler(&mut self) {
+        let world = &self.sandbox.sim.world;
+        let held = (world.grabbed(), world.held_ball());
+        if held != (None, None) {
+            let _ = self.sandbox.apply(Input::Release);
+        }
+        let world = &self.sandbox.sim.world;
+        match held {
+            (Some(index), _) => {
+                let at = world.tumblers()[index].bottom_center();
+                self.log
+                    .say("released", json!({ "tumbler": index, "at": [at.x, at.z] }));
+            }
+            (_, Some(ball)) => {
+                let v = world.balls().velocities()[ball];
+                self.log.say(
+                    "released",
+                    json!({ "ball": ball, "velocity": v.to_array() }),
+                );
+            }
+            _ => {}
+        }
+        self.drag_plane = None;
     }
 
     /// Moves the camera by the walking keys held, for `elapsed` seconds.

@@ -93,6 +93,15 @@ struct Running {
     hud: Hud,
 }
 
+/// The plane the cursor drags a held body over: through `point`, facing
+/// `normal` (up for a tumbler, which is dragged over the floor; towards
+/// the camera for a ball, which the hand lifts and swings).
+#[derive(Clone, Copy, Debug)]
+struct DragPlane {
+    point: glam::DVec3,
+    normal: glam::DVec3,
+}
+
 struct App {
     sandbox: Sandbox,
     options: WindowOptions,
@@ -117,7 +126,7 @@ struct App {
     /// Our arrow cursor in grab mode (pixels), and the height of the plane a
     /// held tumbler is dragged over.
     cursor: Vec2,
-    drag_height: Option<f64>,
+    drag_plane: Option<DragPlane>,
     /// Mouse look measures moves from the window's centre, where it puts the
     /// pointer back after each; false until the pointer is known to be there.
     look_settled: bool,
@@ -160,7 +169,7 @@ impl App {
             mode: MouseMode::Look,
             keys: Keys::default(),
             cursor: Vec2::ZERO,
-            drag_height: None,
+            drag_plane: None,
             look_settled: false,
             last_frame: None,
             camera_logged: Instant::now(),
@@ -233,6 +242,7 @@ impl App {
             self.mode == MouseMode::Grab,
         );
         self.hud_state.time_scale = self.sandbox.playback.scale();
+        self.hud_state.held = held_facts(&sim.world);
         let cursor = (self.mode == MouseMode::Grab).then_some(self.cursor);
         let Some(r) = self.running.as_mut() else {
             return;
@@ -424,6 +434,34 @@ impl ApplicationHandler for App {
             r.window.request_redraw();
         }
     }
+}
+
+/// What the HUD says of the body the hand holds: its number, speed, spin,
+/// kinetic energy and the contacts it pushed at in the last step.
+fn held_facts(world: &rolypoly_physics::World) -> Option<String> {
+    if let Some(i) = world.held_ball() {
+        let balls = world.balls();
+        let contacts = world
+            .contact_probes()
+            .iter()
+            .filter(|p| p.balls.contains(&Some(i)))
+            .count();
+        return Some(format!(
+            "holding ball {i}: {:.2} m/s, spin {:.1} rad/s, {:.3} J, {contacts} contacts",
+            balls.velocities()[i].length(),
+            balls.spins()[i].length(),
+            balls.kinetic_energy(i)
+        ));
+    }
+    let t = world.grabbed()?;
+    let tumbler = &world.tumblers()[t];
+    Some(format!(
+        "holding tumbler {t}: {:.2} m/s, spin {:.1} rad/s, {:.3} J, tilted {:.0} degrees",
+        tumbler.linear_velocity().length(),
+        tumbler.angular_velocity().length(),
+        tumbler.kinetic_energy(world.tumbler_shape()),
+        tumbler.tilt().to_degrees()
+    ))
 }
 
 /// The time now in whole seconds since 1970, which names the files F12
