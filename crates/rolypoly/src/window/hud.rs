@@ -117,7 +117,7 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 18] = [
+const KEYS: [(&str, &str); 19] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
@@ -133,6 +133,10 @@ const KEYS: [(&str, &str); 18] = [
         "grab mode: drag a tumbler or a ball with the left button",
     ),
     ("I", "re-initialise the balls"),
+    (
+        "O",
+        "orbit the body in the middle of the view (drag to turn, wheel to zoom), or fly again",
+    ),
     (
         "1 to 6",
         "debug views: contacts, impulses, velocities, grid, rest, centre of mass",

@@ -6,6 +6,7 @@ mod app;
 pub(crate) mod fly_camera;
 mod hud;
 mod log;
+mod orbit_camera;
 mod panel;
 mod quality;
 

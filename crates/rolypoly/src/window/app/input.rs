@@ -162,6 +162,7 @@ impl App {
                 self.log.say("grab_mode", json!({ "on": next == MouseMode::Grab, "tumblers_on_screen": self.tumblers_on_screen() }));
             }
             KeyCode::KeyI => self.restart(),
+            KeyCode::KeyO => self.toggle_orbit(),
             KeyCode::Digit1
             | KeyCode::Digit2
             | KeyCode::Digit3
@@ -215,7 +216,10 @@ impl App {
                 if !self.look_settled {
                     self.look_settled = true;
                 } else if delta.length_squared() > 0.0 && delta.length() < jump {
-                    self.camera.turn(delta, self.options.look_speed);
+                    match &mut self.orbit {
+                        Some((orbit, _)) => orbit.turn(delta, self.options.look_speed),
+                        None => self.camera.turn(delta, self.options.look_speed),
+                    }
                 }
                 if delta.length_squared() > 0.0 {
                     self.recentre();
@@ -353,7 +357,8 @@ impl App {
     pub(super) fn walk(&mut self, elapsed: f32) {
         let forward = self.keys.forward as i32 - self.keys.back as i32;
         let right = self.keys.right as i32 - self.keys.left as i32;
-        if forward == 0 && right == 0 {
+        // The orbit camera does not walk: it circles.
+        if forward == 0 && right == 0 || self.orbit.is_some() {
             return;
         }
         let room = *self.sandbox.sim.world.room();

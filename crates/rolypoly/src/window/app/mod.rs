@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use anyhow::Context as _;
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 use rolypoly_physics::SphereSpec;
 use rolypoly_render::{
     Camera, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, Quality, QualityChoice,
@@ -27,6 +27,7 @@ use winit::window::{Window, WindowId};
 use super::fly_camera::FlyCamera;
 use super::hud::{Hud, HudState};
 use super::log::EventLog;
+use super::orbit_camera::OrbitCamera;
 use super::panel::Panel;
 use super::quality::WindowQuality;
 use crate::sandbox::{MAX_CATCH_UP, Sandbox};
@@ -93,6 +94,15 @@ struct Running {
     hud: Hud,
 }
 
+/// What the orbit camera circles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Circled {
+    Ball(usize),
+    Tumbler(usize),
+    /// The room's centre.
+    Room,
+}
+
 /// The plane the cursor drags a held body over: through `point`, facing
 /// `normal` (up for a tumbler, which is dragged over the floor; towards
 /// the camera for a ball, which the hand lifts and swings).
@@ -121,6 +131,9 @@ struct App {
     error: Option<anyhow::Error>,
 
     camera: FlyCamera,
+    /// While O holds it: the orbit camera, which the fly camera follows,
+    /// and what it circles.
+    orbit: Option<(OrbitCamera, Circled)>,
     mode: MouseMode,
     keys: Keys,
     /// Our arrow cursor in grab mode (pixels), and the height of the plane a
@@ -151,6 +164,7 @@ impl App {
         Ok(App {
             log: EventLog::new(options.log_events),
             camera,
+            orbit: None,
             camera_reported: camera,
             camera_recorded: camera,
             hud_state: HudState::new(options.seed, world.balls().len()),
@@ -213,6 +227,7 @@ impl App {
         self.last_frame = Some(now);
         // After a stall the camera, like the world, does not leap ahead.
         self.walk(elapsed.min(MAX_CATCH_UP) as f32);
+        self.follow_orbit(elapsed.min(MAX_CATCH_UP) as f32);
         let drawing = Duration::from_secs_f64(elapsed).saturating_sub(self.last_simulation);
         self.simulate(elapsed);
         self.last_simulation = now.elapsed();
@@ -286,6 +301,68 @@ impl App {
         self.count_frame();
         if let Some(action) = action {
             self.act(action);
+        }
+    }
+
+    /// O: the orbit camera takes over, circling the body in the middle of
+    /// the view (or the room's centre), or hands back to the fly camera.
+    pub(super) fn toggle_orbit(&mut self) {
+        if self.orbit.take().is_some() {
+            self.log.say("orbit", json!({ "on": false }));
+            return;
+        }
+        let world = &self.sandbox.sim.world;
+        let (origin, dir) = (
+            self.camera.position.as_dvec3(),
+            self.camera.forward().as_dvec3(),
+        );
+        let tumbler = world.pick(origin, dir);
+        let ball = world.pick_ball(origin, dir);
+        let circled = match (tumbler, ball) {
+            (Some(t), b) if b.is_none_or(|b| t.distance <= b.distance) => {
+                Circled::Tumbler(t.tumbler)
+            }
+            (_, Some(b)) => Circled::Ball(b.ball),
+            _ => Circled::Room,
+        };
+        let target = self.circled_point(circled);
+        self.orbit = Some((OrbitCamera::take_over(&self.camera, target), circled));
+        let what = match circled {
+            Circled::Ball(i) => json!({ "ball": i }),
+            Circled::Tumbler(i) => json!({ "tumbler": i }),
+            Circled::Room => json!("room"),
+        };
+        self.log.say("orbit", json!({ "on": true, "around": what }));
+    }
+
+    /// Where the orbit camera's body is now (a ball caught or gone: the
+    /// room's centre).
+    fn circled_point(&self, circled: Circled) -> Vec3 {
+        let world = &self.sandbox.sim.world;
+        let room = world.room();
+        let centre = ((room.min + room.max) * 0.5).as_vec3();
+        match circled {
+            Circled::Ball(i) if world.balls().alive().get(i) == Some(&true) => {
+                world.balls().positions()[i].as_vec3()
+            }
+            Circled::Tumbler(i) => world
+                .tumblers()
+                .get(i)
+                .map_or(centre, |t| t.center_of_mass().as_vec3()),
+            _ => centre,
+        }
+    }
+
+    /// The orbit camera's point glides after its body, and the fly camera
+    /// stands where the orbit camera does.
+    fn follow_orbit(&mut self, elapsed: f32) {
+        let Some((_, circled)) = self.orbit else {
+            return;
+        };
+        let target = self.circled_point(circled);
+        if let Some((orbit, _)) = &mut self.orbit {
+            orbit.follow(target, elapsed);
+            self.camera = orbit.fly(self.camera.fov_y_deg);
         }
     }
 
@@ -423,6 +500,15 @@ impl ApplicationHandler for App {
                 self.mouse_moved(Vec2::new(position.x as f32, position.y as f32))
             }
             WindowEvent::MouseInput { button, state, .. } => self.button(button, state),
+            WindowEvent::MouseWheel { delta, .. } => {
+                let notches = match delta {
+                    winit::event::MouseScrollDelta::LineDelta(_, y) => y,
+                    winit::event::MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,
+                };
+                if let Some((orbit, _)) = &mut self.orbit {
+                    orbit.zoom(notches);
+                }
+            }
             WindowEvent::Focused(false) => self.keys = Keys::default(),
             WindowEvent::RedrawRequested => self.frame(event_loop),
             _ => {}
