@@ -68,6 +68,7 @@ pub struct EffectsStats {
 }
 
 /// The particle effects of the fireball: its trail and its hits, driven by the world's events.
+#[derive(Clone)]
 pub struct Effects {
     config: EffectsConfig,
     ring: ParticleRing,

@@ -7,6 +7,7 @@ use rolypoly_physics::{Event, World};
 use rolypoly_render::{DebugViews, LightConfig, SceneView};
 
 /// The world and its effects.
+#[derive(Clone)]
 pub struct Simulation {
     /// The physics.
     pub world: World,

@@ -174,6 +174,37 @@ pub struct World {
     scratch: StepScratch,
 }
 
+/// A copy of the world that steps on exactly as the world would: every
+/// body, the random sequence, the warm start, the pours and the hand. What
+/// a step builds afresh is not copied (its working storage, the contacts
+/// and the record it writes its impulses into), so that a copy kept to go
+/// back to (the sandbox's rewind) holds only the state; until it steps, a
+/// copy shows no contacts to the debug views.
+impl Clone for World {
+    fn clone(&self) -> World {
+        World {
+            config: self.config.clone(),
+            room: self.room,
+            shape: Arc::clone(&self.shape),
+            balls: self.balls.clone(),
+            tumblers: self.tumblers.clone(),
+            fireball: self.fireball.clone(),
+            rng: self.rng.clone(),
+            time: self.time,
+            steps: self.steps,
+            events: self.events.clone(),
+            grid: self.grid.clone(),
+            contacts: Contacts::default(),
+            warm: self.warm.clone(),
+            warm_next: WarmStart::default(),
+            retakes: self.retakes,
+            pour: self.pour.clone(),
+            ball_hold: self.ball_hold,
+            scratch: StepScratch::sized_for(self.scratch.hit_wall.len(), self.tumblers.len()),
+        }
+    }
+}
+
 /// What a step works in and forgets: kept between steps only so that a
 /// step allocates nothing.
 #[derive(Default)]
@@ -203,6 +234,18 @@ struct StepScratch {
     impacts: impacts::Impacts,
     /// The state before a step, to retake it if its warm start made energy.
     before_step: (Balls, Vec<Tumbler>),
+}
+
+impl StepScratch {
+    /// Fresh storage for a world of `balls` ball numbers and `tumblers`
+    /// tumblers: the parts a step indexes by number before it fills them.
+    fn sized_for(balls: usize, tumblers: usize) -> StepScratch {
+        StepScratch {
+            contact_inv: vec![DMat3::IDENTITY; tumblers],
+            hit_wall: vec![false; balls],
+            ..StepScratch::default()
+        }
+    }
 }
 
 impl World {
@@ -254,11 +297,7 @@ impl World {
         let touch = 3.0 * b.largest_radius() + 4.0 * TOUCH_SLOP;
         let spacing = (room.size().element_product() / b.total().max(1) as f64).cbrt();
         let grid = Grid::new(room.min, room.max, touch.max(spacing));
-        let scratch = StepScratch {
-            contact_inv: vec![DMat3::IDENTITY; tumblers.len()],
-            hit_wall: vec![false; b.total()],
-            ..StepScratch::default()
-        };
+        let scratch = StepScratch::sized_for(b.total(), tumblers.len());
         let mut world = World {
             balls: Balls::with_uniform(b.total(), b.radius, b.mass),
             tumblers,

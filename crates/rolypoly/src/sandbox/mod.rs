@@ -17,6 +17,7 @@ mod fixed_steps;
 mod input;
 mod playback;
 mod replay_log;
+mod rewind;
 mod shipped;
 
 pub use fixed_steps::{MAX_CATCH_UP, STEP_BUDGET_PER_FRAME};
@@ -24,6 +25,8 @@ pub use input::{CameraPose, Input, Journal, Refused, Timed};
 use input::{array, vector};
 pub use playback::{Playback, TIME_SCALES};
 pub use replay_log::{REPLAY_FORMAT, ReplayLog};
+pub use rewind::REWIND_SECONDS;
+use rewind::{History, Snapshot};
 pub use shipped::{SHIPPED_SCENES, ShippedScene};
 
 /// Most balls a player may throw into one run of a scene; I (restart)
@@ -65,6 +68,8 @@ pub struct Sandbox {
     script: Option<(VecDeque<Timed>, u64)>,
     /// The camera as the last recorded input put it (replays follow it).
     pub view_pose: Option<CameraPose>,
+    /// The last 30 s, to go back to (see [`rewind`]).
+    history: History,
 }
 
 impl Sandbox {
@@ -76,7 +81,7 @@ impl Sandbox {
 
     /// The toy on `world`, built from `scene` with `seed`.
     pub fn with_world(world: World, scene: Scene, name: &str, seed: u64) -> Sandbox {
-        Sandbox {
+        let mut sandbox = Sandbox {
             sim: Simulation::new(world, scene.effects.clone(), seed),
             journal: Journal {
                 scene: scene.clone(),
@@ -93,12 +98,36 @@ impl Sandbox {
             recording_from: None,
             script: None,
             view_pose: None,
+            history: History::default(),
+        };
+        sandbox.history.begin(sandbox.snapshot());
+        sandbox
+    }
+
+    /// The toy as it stands now, to go back to.
+    fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            tick: self.ticks,
+            sim: self.sim.clone(),
+            scene: self.scene.clone(),
+            thrown: self.thrown,
+            inputs: self.journal.inputs.len(),
         }
     }
 
-    /// Takes `input`: what it does to the world or the settings, kept in
-    /// the journal when it did something.
+    /// Takes `input` from the player: what it does to the world or the
+    /// settings, kept in the journal when it did something. After going
+    /// back, anything but a camera's move forgets the future the first time
+    /// had (see [`rewind`]).
     pub fn apply(&mut self, input: Input) -> Result<(), Refused> {
+        if !matches!(input, Input::Camera { .. }) {
+            self.history.branch(self.ticks);
+        }
+        self.take(input)
+    }
+
+    /// Takes `input`, the player's or one played again.
+    fn take(&mut self, input: Input) -> Result<(), Refused> {
         match &input {
             Input::Fireball { from, direction } => {
                 self.sim
@@ -148,6 +177,7 @@ impl Sandbox {
                 };
                 self.recording_from = self.recording_from.map(|_| 0);
                 self.scene = scene;
+                self.history.begin(self.snapshot());
                 return Ok(());
             }
             Input::Camera {
@@ -277,6 +307,49 @@ impl Sandbox {
         }
         self.sim.tick();
         self.ticks += 1;
+        self.history.furthest = self.history.furthest.max(self.ticks);
+        let (every, keep) = rewind::spacing(self.sim.world.config().solver.dt);
+        if self.ticks.is_multiple_of(every) {
+            let snapshot = self.snapshot();
+            self.history.keep(snapshot, keep);
+        }
+    }
+
+    /// Goes back (or on, within what happened) to the start of `tick`,
+    /// as far as the history reaches: the toy stands as it stood then, and
+    /// playing on gives the same run as the first time until the player
+    /// acts. Returns the tick reached.
+    pub fn rewind_to(&mut self, tick: u64) -> u64 {
+        let target = tick.clamp(self.history.oldest(), self.history.furthest);
+        if target < self.ticks
+            && let Some(snapshot) = self.history.before(target).cloned()
+        {
+            // The inputs from the copy on, played again as their ticks come.
+            let mut future: VecDeque<Timed> =
+                self.journal.inputs.drain(snapshot.inputs..).collect();
+            future.extend(self.history.ahead.drain(..));
+            self.history.ahead = future;
+            self.sim = snapshot.sim;
+            self.scene = snapshot.scene;
+            self.thrown = snapshot.thrown;
+            self.ticks = snapshot.tick;
+            self.recording_from = self.recording_from.map(|from| from.min(self.ticks));
+        }
+        while self.ticks < target {
+            self.tick();
+        }
+        self.ticks
+    }
+
+    /// The ticks that can be gone back or on to: the oldest kept, and the
+    /// furthest this line of the world has reached.
+    pub fn timeline(&self) -> (u64, u64) {
+        (self.history.oldest(), self.history.furthest)
+    }
+
+    /// How many copies of the toy the history holds now.
+    pub fn snapshots_kept(&self) -> usize {
+        self.history.len()
     }
 
     /// Steps until the replay has played every input and reached its end
@@ -302,6 +375,12 @@ impl Sandbox {
 
     fn play_due(&mut self) {
         let ticks = self.ticks;
+        while self.history.ahead.front().is_some_and(|t| t.tick <= ticks) {
+            if let Some(timed) = self.history.ahead.pop_front() {
+                // What was refused the first time is refused again.
+                let _ = self.take(timed.input);
+            }
+        }
         while let Some(timed) = self
             .script
             .as_mut()
@@ -314,7 +393,7 @@ impl Sandbox {
             .flatten()
         {
             // What was refused when recorded is refused again.
-            let _ = self.apply(timed.input);
+            let _ = self.take(timed.input);
         }
     }
 

@@ -338,3 +338,91 @@ fn a_broken_recording_is_refused_with_its_line() {
         assert!(error.starts_with(says), "{error}");
     }
 }
+
+/// Runs `ticks` ticks.
+fn run(s: &mut Sandbox, ticks: u64) {
+    for _ in 0..ticks {
+        s.tick();
+    }
+}
+
+#[test]
+fn going_back_then_playing_on_gives_the_first_run_to_the_bit() {
+    for seed in [21, 22, 23] {
+        let mut s = sandbox(seed);
+        scripted_session(&mut s, &mut rolypoly_physics::Rng::new(seed));
+        let (end, digest) = (s.ticks(), s.digest());
+        let dt = s.world().config().solver.dt;
+        let second = (1.0 / dt).round() as u64;
+        // A step back, a second back, and back to the start of the session
+        // (which had every kind of input): each played on to the end.
+        for back in [1, second, end - s.timeline().0, 7 * second / 3] {
+            let reached = s.rewind_to(end - back);
+            assert_eq!(reached, end - back, "seed {seed}: went back to {reached}");
+            assert_ne!(s.digest(), digest);
+            run(&mut s, back);
+            assert_eq!(
+                s.digest(),
+                digest,
+                "seed {seed}: {back} ticks back, played on"
+            );
+        }
+        // Scrubbing back and forth within what happened lands on the same run.
+        s.rewind_to(end / 2);
+        s.rewind_to(end - 3);
+        s.rewind_to(end);
+        assert_eq!(s.digest(), digest, "seed {seed}: scrubbed");
+    }
+}
+
+#[test]
+fn acting_after_going_back_forgets_the_future_the_first_time_had() {
+    let mut s = sandbox(5);
+    run(&mut s, 120);
+    let eye = DVec3::new(0.0, 1.5, 3.5);
+    s.throw(eye, DVec3::new(0.1, -0.1, -1.0)).unwrap();
+    run(&mut s, 240);
+    let (end, first) = (s.ticks(), s.digest());
+    let balls_first = s.world().balls().len();
+    s.rewind_to(60);
+    // A throw the first time did not have: a new future.
+    s.throw(eye, DVec3::new(-0.3, 0.0, -1.0)).unwrap();
+    run(&mut s, end - 60);
+    assert_ne!(s.digest(), first);
+    // Only the new throw happened: the first time's was forgotten.
+    assert_eq!(s.world().balls().len(), balls_first);
+    assert_eq!(s.timeline().1, end);
+    // A camera's move is not an act: the future stays.
+    let mut t = sandbox(5);
+    run(&mut t, 120);
+    t.throw(eye, DVec3::new(0.1, -0.1, -1.0)).unwrap();
+    run(&mut t, 240);
+    t.rewind_to(100);
+    t.apply(Input::Camera {
+        position: [0.0, 1.0, 3.0],
+        yaw: 0.3,
+        pitch: 0.0,
+    })
+    .unwrap();
+    run(&mut t, end - 100);
+    assert_eq!(t.digest(), first);
+}
+
+#[test]
+fn the_history_reaches_thirty_seconds_back_and_no_further() {
+    let mut s = sandbox(2);
+    let dt = s.world().config().solver.dt;
+    let second = (1.0 / dt).round() as u64;
+    run(&mut s, 75 * second);
+    let (oldest, furthest) = s.timeline();
+    assert_eq!(furthest, s.ticks());
+    let span = furthest - oldest;
+    assert!(
+        (30 * second..=31 * second).contains(&span),
+        "reaches {} s back",
+        span as f64 * dt
+    );
+    assert!(s.snapshots_kept() <= 32, "{} copies", s.snapshots_kept());
+    // Asked to go further back, it goes as far as it reaches.
+    assert_eq!(s.rewind_to(0), oldest);
+}

@@ -18,6 +18,9 @@ pub struct HudState {
     pub quality: String,
     /// What the hand holds, if anything: its facts.
     pub held: Option<String>,
+    /// How far behind the furthest point of the run the world stands (s),
+    /// after going back.
+    pub rewound: f64,
     pub balls_alive: usize,
     pub balls_total: usize,
     pub particles: (usize, usize),
@@ -63,6 +66,7 @@ impl HudState {
             render_cpu: 0.0,
             quality: String::new(),
             held: None,
+            rewound: 0.0,
             balls_alive: balls,
             balls_total: balls,
             particles: (0, 0),
@@ -117,7 +121,7 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 19] = [
+const KEYS: [(&str, &str); 20] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
@@ -125,6 +129,10 @@ const KEYS: [(&str, &str); 19] = [
     ("hold Left Shift", "freeze time (the camera still moves)"),
     ("P", "pause / go on"),
     (".", "one step while paused"),
+    (
+        ", and Backspace",
+        "back one step, back one second (the last 30 s)",
+    ),
     ("[ and ]", "slower, faster (1/16x to 4x)"),
     ("Tab", "sandbox panel: scenes, settings, save"),
     ("R", "record the inputs / stop and write them"),
@@ -238,6 +246,12 @@ impl Hud {
                     if s.pace < 0.95 && !s.paused {
                         // The steps cannot keep up with real time.
                         modes.push(format!("SLOW MOTION {}", percent(s.pace)));
+                    }
+                    if s.rewound > 0.0 {
+                        modes.push(format!(
+                            "REWOUND {:.2} s: the first run plays on",
+                            s.rewound
+                        ));
                     }
                     if !modes.is_empty() {
                         ui.colored_label(egui::Color32::from_rgb(255, 200, 80), modes.join("  "));

@@ -45,6 +45,8 @@ pub enum PanelAction {
     Load(SceneSource),
     Restart,
     Save(PathBuf),
+    /// The timeline moved to this tick.
+    Rewind(u64),
 }
 
 pub struct Panel {
@@ -143,6 +145,18 @@ impl Panel {
                 }
             }
         });
+
+        let (oldest, furthest) = sandbox.timeline();
+        if furthest > oldest {
+            let dt = sandbox.world().config().solver.dt;
+            let mut tick = sandbox.ticks();
+            let slider = egui::Slider::new(&mut tick, oldest..=furthest)
+                .text("rewind (, a step, Backspace a second)")
+                .custom_formatter(move |t, _| format!("{:.2} s", t * dt));
+            if ui.add(slider).changed() {
+                action = Some(PanelAction::Rewind(tick));
+            }
+        }
 
         let mut scene = sandbox.scene().clone();
         ui.separator();

@@ -25,6 +25,7 @@ impl App {
             PanelAction::Load(source) => self.load(&source),
             PanelAction::Restart => self.restart(),
             PanelAction::Save(path) => self.save(&path),
+            PanelAction::Rewind(tick) => self.rewind_to(tick),
         }
     }
 

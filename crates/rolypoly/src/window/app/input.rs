@@ -102,7 +102,9 @@ impl App {
                     self.log_pause();
                 }
             }
-            _ if !down || event.repeat && code != KeyCode::Period => {}
+            _ if !down
+                || event.repeat
+                    && !matches!(code, KeyCode::Period | KeyCode::Comma | KeyCode::Backspace) => {}
             KeyCode::KeyP => {
                 let paused = self.sandbox.playback.paused();
                 self.sandbox.playback.set_paused(!paused);
@@ -111,6 +113,17 @@ impl App {
             KeyCode::Period => {
                 self.sandbox.playback.set_paused(true);
                 self.sandbox.playback.step_once();
+            }
+            // Back one step, or one second, paused there.
+            KeyCode::Comma | KeyCode::Backspace => {
+                let dt = self.sandbox.world().config().solver.dt;
+                let back = if code == KeyCode::Comma {
+                    1
+                } else {
+                    (1.0 / dt).round() as u64
+                };
+                let to = self.sandbox.ticks().saturating_sub(back);
+                self.rewind_to(to);
             }
             KeyCode::BracketLeft | KeyCode::BracketRight => {
                 self.sandbox

@@ -258,6 +258,9 @@ impl App {
         );
         self.hud_state.time_scale = self.sandbox.playback.scale();
         self.hud_state.held = held_facts(&sim.world);
+        let furthest = self.sandbox.timeline().1;
+        self.hud_state.rewound =
+            furthest.saturating_sub(self.sandbox.ticks()) as f64 * sim.world.config().solver.dt;
         let cursor = (self.mode == MouseMode::Grab).then_some(self.cursor);
         let Some(r) = self.running.as_mut() else {
             return;
@@ -364,6 +367,18 @@ impl App {
             orbit.follow(target, elapsed);
             self.camera = orbit.fly(self.camera.fov_y_deg);
         }
+    }
+
+    /// Goes back (or on) to the start of tick `tick` (see
+    /// [`Sandbox::rewind_to`]), paused there.
+    pub(super) fn rewind_to(&mut self, tick: u64) {
+        self.sandbox.playback.set_paused(true);
+        let reached = self.sandbox.rewind_to(tick);
+        let (oldest, furthest) = self.sandbox.timeline();
+        self.log.say(
+            "rewound",
+            json!({ "tick": reached, "oldest": oldest, "furthest": furthest, "sim_time": self.sandbox.world().time() }),
+        );
     }
 
     /// Logs the frames drawn a second, and at what level, once a second.
