@@ -97,6 +97,7 @@ pub fn from_obj(text: &str, origin: &str) -> Result<MeshData, RenderError> {
         origin: origin.to_owned(),
         message,
     };
+    check_face_indices(text).map_err(error)?;
     let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &tobj::GPU_LOAD_OPTIONS, |_| {
         Err(tobj::LoadError::OpenFileFailed)
     })
@@ -111,7 +112,7 @@ pub fn from_obj(text: &str, origin: &str) -> Result<MeshData, RenderError> {
         if m.normals.len() != 3 * n || m.texcoords.len() != 2 * n {
             return Err(error(format!(
                 "object `{}` lacks normals or texture coordinates",
-                model.name
+                shown(&model.name)
             )));
         }
         let base = mesh.vertices.len() as u32;
@@ -131,7 +132,7 @@ pub fn from_obj(text: &str, origin: &str) -> Result<MeshData, RenderError> {
             {
                 return Err(error(format!(
                     "object `{}` has a non-finite number",
-                    model.name
+                    shown(&model.name)
                 )));
             }
             // Shading divides by the normal's length: none would light the
@@ -139,7 +140,7 @@ pub fn from_obj(text: &str, origin: &str) -> Result<MeshData, RenderError> {
             if normal.iter().map(|x| x * x).sum::<f32>() < 1e-12 {
                 return Err(error(format!(
                     "object `{}` has a normal of zero length (vn 0 0 0)",
-                    model.name
+                    shown(&model.name)
                 )));
             }
             mesh.vertices.push(Vertex {
@@ -154,6 +155,74 @@ pub fn from_obj(text: &str, origin: &str) -> Result<MeshData, RenderError> {
         return Err(error("it holds no triangles".to_owned()));
     }
     Ok(mesh)
+}
+
+/// A name from the file for a message: its control characters (a `\r`
+/// before the line's end, ESC) escaped, so the message stays one line.
+fn shown(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+/// Checks that every face's indices name a position, texture coordinate
+/// and normal of the file. tobj turns a relative (negative) index that
+/// reaches back past the first into a huge number, and a huge index
+/// overflows its arithmetic before its bounds check: a panic in debug
+/// builds, a wrong normal or texture coordinate in release builds.
+fn check_face_indices(text: &str) -> Result<(), String> {
+    const KINDS: [(&str, &str); 3] = [
+        ("v", "position"),
+        ("vt", "texture coordinate"),
+        ("vn", "normal"),
+    ];
+    let kind = |line: &str| {
+        let first = line.split_whitespace().next();
+        KINDS.iter().position(|(key, _)| Some(*key) == first)
+    };
+    let mut totals = [0usize; 3];
+    for k in text.lines().filter_map(kind) {
+        totals[k] += 1;
+    }
+    // Relative indices count back from the line they are on.
+    let mut before = [0usize; 3];
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("f") {
+            if let Some(k) = kind(line) {
+                before[k] += 1;
+            }
+            continue;
+        }
+        for word in words {
+            for (k, part) in word.split('/').take(3).enumerate() {
+                // Not a number (nor empty): tobj refuses it itself.
+                let Ok(index) = part.parse::<isize>() else {
+                    continue;
+                };
+                let names = if index < 0 {
+                    index.unsigned_abs() <= before[k]
+                } else {
+                    index >= 1 && index.unsigned_abs() <= totals[k]
+                };
+                if !names {
+                    return Err(format!(
+                        "not a valid OBJ file: line {}: face corner `{}` names no {} {index}",
+                        n + 1,
+                        shown(word),
+                        KINDS[k].1
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The shipped mesh of the default tumbler (made by `rolypoly make-tumbler-obj`).

@@ -7,7 +7,7 @@ use std::path::Path;
 use anyhow::Context;
 use serde::{Deserialize, Serialize};
 
-use super::Timed;
+use super::{Input, Timed};
 
 /// The version of the file's layout this program writes and reads.
 pub const REPLAY_FORMAT: u32 = 1;
@@ -57,7 +57,7 @@ impl ReplayLog {
             .next()
             .with_context(|| format!("{origin}: the file is empty, not a recording"))?;
         let mut log: ReplayLog = serde_json::from_str(first)
-            .map_err(|e| anyhow::anyhow!("{origin}:1: not a rolypoly recording: {e}"))?;
+            .map_err(|e| anyhow::anyhow!("{origin}:1: not a rolypoly recording: {}", shown(&e)))?;
         if log.format != REPLAY_FORMAT {
             anyhow::bail!(
                 "{origin}:1: a recording of format {}, this program reads format {REPLAY_FORMAT}",
@@ -67,7 +67,7 @@ impl ReplayLog {
         let mut last = 0;
         for (i, line) in lines {
             let timed: Timed = serde_json::from_str(line)
-                .map_err(|e| anyhow::anyhow!("{origin}:{}: {e}", i + 1))?;
+                .map_err(|e| anyhow::anyhow!("{origin}:{}: {}", i + 1, shown(&e)))?;
             if timed.tick < last || timed.tick > log.to_tick {
                 anyhow::bail!(
                     "{origin}:{}: tick {} is out of order (after {last}, at most {})",
@@ -75,6 +75,19 @@ impl ReplayLog {
                     timed.tick,
                     log.to_tick
                 );
+            }
+            // Loading a scene starts the journal over, so a recording holds
+            // none; one would throw away the state the replay rebuilds.
+            if matches!(timed.input, Input::Load { .. }) {
+                anyhow::bail!(
+                    "{origin}:{}: a recording holds no scene load (one starts a new recording)",
+                    i + 1
+                );
+            }
+            // A number beyond an f32 reads as infinite (a camera's): the
+            // view would be lost, and the log not written back.
+            if !writes_back(&timed) {
+                anyhow::bail!("{origin}:{}: a number out of range", i + 1);
             }
             last = timed.tick;
             log.inputs.push(timed);
@@ -101,4 +114,27 @@ impl ReplayLog {
         std::fs::write(path, self.to_text())
             .with_context(|| format!("cannot write recording `{}`", path.display()))
     }
+}
+
+/// A parser's message, which quotes names from the file, on one line and
+/// without the file's control characters (a name may hold `\n` or ESC).
+fn shown(e: &serde_json::Error) -> String {
+    e.to_string()
+        .chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_default().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
+/// Whether `timed` reads back from its text as it is.
+fn writes_back(timed: &Timed) -> bool {
+    serde_json::to_string(timed)
+        .ok()
+        .and_then(|text| serde_json::from_str::<Timed>(&text).ok())
+        .is_some_and(|again| again == *timed)
 }
