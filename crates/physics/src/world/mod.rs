@@ -43,6 +43,7 @@ use crate::tumbler::{Tumbler, TumblerShape};
 use glam::{DMat3, DVec3, Vec4};
 use rayon::prelude::*;
 use std::sync::Arc;
+use std::time::Instant;
 
 mod find_contacts;
 mod fireball_flight;
@@ -53,11 +54,13 @@ mod inspect;
 mod live;
 mod overlaps;
 mod pour;
+mod profile;
 mod report;
 mod spawn;
 
 pub use hand::{BallPick, Pick};
 pub use inspect::{ContactKind, ContactProbe};
+pub use profile::{Stage, StepTimes};
 pub use spawn::placement_problem;
 
 /// A ball this close to a wall is touching it (metres).
@@ -171,6 +174,8 @@ pub struct World {
     pour: pour::Pour,
     /// The ball the hand holds, if it holds one.
     ball_hold: Option<hand::BallHold>,
+    /// How long the last step's stages took.
+    times: StepTimes,
     scratch: StepScratch,
 }
 
@@ -200,6 +205,7 @@ impl Clone for World {
             retakes: self.retakes,
             pour: self.pour.clone(),
             ball_hold: self.ball_hold,
+            times: self.times,
             scratch: StepScratch::sized_for(self.scratch.hit_wall.len(), self.tumblers.len()),
         }
     }
@@ -313,6 +319,7 @@ impl World {
             retakes: 0,
             pour: pour::Pour::default(),
             ball_hold: None,
+            times: StepTimes::default(),
             scratch,
             room,
             shape: Arc::new(shape),
@@ -488,18 +495,23 @@ impl World {
 
     /// [`World::step`], on the current thread.
     fn step_here(&mut self) {
+        let started = Instant::now();
+        let mut clock = started;
+        self.times = StepTimes::default();
+        let events_before = self.events.len();
         let dt = self.config.solver.dt;
         self.pour_due_balls();
         // The hand feeds energy in: a held step is not held to the world's.
         self.pull_held_ball(dt);
+        self.times.lap(Stage::Setup, &mut clock);
         if self.grabbed().is_some() || self.ball_hold.is_some() {
-            self.advance(dt, true, None);
+            self.advance(dt, true, None, &mut clock);
         } else {
             let before = self.energy().total();
             self.scratch.before_step.0.clone_from(&self.balls);
             self.scratch.before_step.1.clone_from(&self.tumblers);
             let first_event = self.events.len();
-            self.advance(dt, true, Some(before));
+            self.advance(dt, true, Some(before), &mut clock);
             // Retaken with half the warm start, then none: a cold step alone
             // would let a deep pile sag, and the next warm start overshoot.
             for share in [0.5, 0.0] {
@@ -515,13 +527,24 @@ impl World {
                 self.events.truncate(first_event);
                 self.warm.weaken(share);
                 self.retakes += 1;
-                self.advance(dt, share > 0.0, Some(before));
+                self.advance(dt, share > 0.0, Some(before), &mut clock);
             }
         }
         std::mem::swap(&mut self.warm, &mut self.warm_next);
         self.move_fireball(dt);
         self.steps += 1;
         self.time = self.steps as f64 * dt;
+        self.times.impacts = self.events.len().saturating_sub(events_before);
+        self.times.pairs = self.contacts.pair_count();
+        self.times.other_contacts =
+            self.contacts.walls.len() + self.contacts.tumbler_contacts.len();
+        self.times.lap(Stage::Finish, &mut clock);
+        self.times.total = started.elapsed();
+    }
+
+    /// How long the last step took, stage by stage, and what it worked on.
+    pub fn step_times(&self) -> &StepTimes {
+        &self.times
     }
 
     /// Takes `excess` joules from the balls' motion, all slowed alike, if
@@ -592,12 +615,23 @@ impl World {
     /// One step of the balls and tumblers, with or without a warm start.
     /// With `start_energy`, the world's energy now, no part of the step may
     /// make energy; without, the hand feeds some in anyway.
-    fn advance(&mut self, dt: f64, warm_start: bool, start_energy: Option<f64>) {
+    fn advance(
+        &mut self,
+        dt: f64,
+        warm_start: bool,
+        start_energy: Option<f64>,
+        clock: &mut Instant,
+    ) {
         let g = DVec3::new(0.0, -self.config.gravity, 0.0);
+        // What came before this advance (an energy check, a retake's
+        // restore) is the finish's.
+        self.times.lap(Stage::Finish, clock);
         self.grid.rebuild(&self.balls.position, &self.balls.alive);
         let first_event = self.events.len();
         self.enter_sorted_order();
+        self.times.lap(Stage::Grid, clock);
         self.collect_contacts(dt);
+        self.times.lap(Stage::Contacts, clock);
 
         // Step-average velocities: half a step of gravity now, half after moving.
         per_ball(&mut self.balls.velocity, &self.balls.alive, |v, &alive| {
@@ -606,16 +640,20 @@ impl World {
             }
         });
         self.resolve_impacts(dt, g);
+        self.times.lap(Stage::Impacts, clock);
         self.update_contact_inertia();
         self.predict_after_impacts(warm_start);
         self.apply_rolling_resistance();
+        self.times.lap(Stage::Solve, clock);
 
         self.move_balls(dt, g);
         self.move_tumblers(dt);
+        self.times.lap(Stage::Move, clock);
 
         self.update_contact_inertia();
         self.begin_recording();
         solve_project(&mut self.step_context(warm_start));
+        self.times.lap(Stage::Project, clock);
         self.report_contacts();
         // Pushing sunk balls apart lifts them: it may spend what the step
         // has lost, no more.
@@ -626,6 +664,7 @@ impl World {
         self.push_apart_sunk_balls(budget);
         self.separate_overlaps();
         self.leave_sorted_order(first_event);
+        self.times.lap(Stage::Report, clock);
     }
 
     /// Makes `self.balls` the live balls in the grid's cell order for the
