@@ -112,8 +112,10 @@ impl Gpu {
         let info = adapter.get_info();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("rolypoly"),
-            // Optional: lets ball fragments be depth-tested before they are traced.
-            required_features: adapter.features() & wgpu::Features::SHADER_EARLY_DEPTH_TEST,
+            // Optional: lets ball fragments be depth-tested before they are
+            // traced; and lets the profiler time the frame's passes.
+            required_features: adapter.features()
+                & (wgpu::Features::SHADER_EARLY_DEPTH_TEST | wgpu::Features::TIMESTAMP_QUERY),
             required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
             experimental_features: wgpu::ExperimentalFeatures::disabled(),
             memory_hints: wgpu::MemoryHints::Performance,

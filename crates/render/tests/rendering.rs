@@ -500,3 +500,39 @@ fn grab_mode_draws_a_white_arrow_cursor_where_it_is_told() {
     snap.renderer.set_cursor(None);
     assert_eq!(snap.capture(&view, &camera).expect("frame"), plain);
 }
+
+/// Where the adapter has timestamp queries, the frame's passes come back
+/// timed within a few frames (each shorter than the frame took on the
+/// clock); where it has none, no times are made up.
+#[test]
+fn the_passes_are_timed_on_the_gpu_where_it_can() {
+    let config = WorldConfig::default();
+    let mut snap = snapshot(&config, RenderSettings::default(), 160, 90);
+    let has_timestamps = snap
+        .gpu
+        .device
+        .features()
+        .contains(wgpu::Features::TIMESTAMP_QUERY);
+    let view = SceneView::from_world(&world_at(&config, 1, 0.5), None);
+    let camera = Camera::overview(view.room_size);
+    let mut timed = None;
+    for _ in 0..6 {
+        let started = std::time::Instant::now();
+        let stats = snap.draw(&view, &camera).expect("frame");
+        if let Some(times) = stats.gpu {
+            timed = Some((times, started.elapsed()));
+        }
+    }
+    match timed {
+        Some((times, _)) => {
+            assert!(has_timestamps);
+            for (name, t) in times.named() {
+                assert!(t < std::time::Duration::from_secs(5), "{name}: {t:?}");
+            }
+            assert!(times.scene > std::time::Duration::ZERO, "{times:?}");
+            assert!(times.shadow > std::time::Duration::ZERO, "{times:?}");
+        }
+        None => assert!(!has_timestamps, "timestamps never came back"),
+    }
+    eprintln!("timestamps: {has_timestamps}, {timed:?}");
+}

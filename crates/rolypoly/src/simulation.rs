@@ -3,7 +3,7 @@
 //! renderer draws.
 
 use rolypoly_fx::{Effects, EffectsConfig};
-use rolypoly_physics::{Event, World};
+use rolypoly_physics::{Event, StepTimes, World};
 use rolypoly_render::{DebugViews, LightConfig, SceneView};
 
 /// The world and its effects.
@@ -15,6 +15,9 @@ pub struct Simulation {
     pub fx: Effects,
     /// The last tick's events, kept so that ticks allocate nothing.
     events: Vec<Event>,
+    /// The steps' stage times since they were last taken, summed, and how
+    /// many steps.
+    step_times: (StepTimes, u32),
 }
 
 impl Simulation {
@@ -25,16 +28,32 @@ impl Simulation {
             world,
             fx: Effects::new(effects, seed),
             events: Vec::new(),
+            step_times: (StepTimes::default(), 0),
         }
     }
 
     /// One fixed step: the physics, then the effects its events set off.
     pub fn tick(&mut self) {
         self.world.step();
+        let (sum, steps) = &mut self.step_times;
+        let last = self.world.step_times();
+        for (total, stage) in sum.stages.iter_mut().zip(last.stages) {
+            *total += stage;
+        }
+        sum.total += last.total;
+        (sum.pairs, sum.other_contacts) = (last.pairs, last.other_contacts);
+        sum.impacts += last.impacts;
+        *steps += 1;
         self.world.take_events(&mut self.events);
         self.fx.consume(&self.events, &self.world);
         self.fx
             .update(self.world.config().solver.dt, self.world.fireball());
+    }
+
+    /// The steps' stage times since the last call, summed (the counts of
+    /// pairs and contacts: the last step's), and how many steps.
+    pub fn take_step_times(&mut self) -> (StepTimes, u32) {
+        std::mem::take(&mut self.step_times)
     }
 
     /// `steps` ticks.

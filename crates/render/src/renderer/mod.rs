@@ -30,6 +30,8 @@ use occlusion::OcclusionPipeline;
 use pipelines::Pipelines;
 use std::time::{Duration, Instant};
 use targets::{TargetKit, Targets};
+use timing::GpuTimer;
+pub use timing::PassTimes;
 use wgpu::util::DeviceExt;
 
 mod bindings;
@@ -38,6 +40,7 @@ mod cursor;
 mod occlusion;
 mod pipelines;
 mod targets;
+mod timing;
 
 pub use crate::gpu::HDR_FORMAT;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -109,6 +112,9 @@ pub struct FrameStats {
     pub draw_calls: u32,
     /// Time spent in our own code building and recording the frame.
     pub cpu_time: Duration,
+    /// The GPU's time for each pass of the latest frame whose timestamps
+    /// have come back, where the adapter has timestamp queries.
+    pub gpu: Option<PassTimes>,
 }
 
 /// The scene shader's `Globals`: the camera, both lights, the shadows and
@@ -170,6 +176,8 @@ pub struct Renderer {
     /// The tumbler mesh's bounding sphere, in its own space.
     tumbler_bounds: (glam::Vec3, f32),
     targets: Option<Targets>,
+    /// Times the passes on the GPU, where it can.
+    timer: Option<GpuTimer>,
 }
 
 /// The debug views' vertices: filled and uploaded as instances are.
@@ -257,6 +265,7 @@ impl Renderer {
             lines: InstanceBuffer::new(device, "debug lines"),
             tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
+            timer: GpuTimer::new(device, &gpu.queue),
         }
     }
 
@@ -294,6 +303,8 @@ impl Renderer {
             });
         }
         let start = Instant::now();
+        let gpu_times = self.timer.as_mut().and_then(|t| t.collect(&gpu.device));
+        let timed = self.timer.as_ref().is_some_and(GpuTimer::free);
         self.ensure_targets(gpu, width, height);
         let ranges = instances::fill_scene(&mut self.instances.items, view);
         self.instances.upload(gpu);
@@ -331,13 +342,13 @@ impl Renderer {
                 .settings
                 .cull_shadow_faces
                 .then(|| self.sort_shadow_casters(gpu, view, &ranges));
-            draw_calls += self.shadow_pass(&mut encoder, &ranges, culled.as_ref());
+            draw_calls += self.shadow_pass(&mut encoder, &ranges, culled.as_ref(), timed);
         }
         let targets = self
             .targets
             .as_ref()
             .ok_or_else(|| RenderError::Readback("no render targets".into()))?;
-        draw_calls += self.scene_pass(&mut encoder, targets, &ranges, lines_over);
+        draw_calls += self.scene_pass(&mut encoder, targets, &ranges, lines_over, timed);
         if view.light.occlusion {
             draw_calls +=
                 self.occlusion
@@ -364,12 +375,19 @@ impl Renderer {
         ];
         gpu.queue
             .write_buffer(&self.tonemap_params, 0, bytemuck::cast_slice(&params));
-        draw_calls += self.tonemap_pass(&gpu.queue, &mut encoder, targets, output);
+        draw_calls += self.tonemap_pass(&gpu.queue, &mut encoder, targets, output, timed);
+        if timed && let Some(timer) = &mut self.timer {
+            timer.resolve(&mut encoder, self.settings.shadows);
+        }
         let cpu_time = start.elapsed();
         gpu.queue.submit([encoder.finish()]);
+        if timed && let Some(timer) = &mut self.timer {
+            timer.submitted();
+        }
         Ok(FrameStats {
             draw_calls,
             cpu_time,
+            gpu: gpu_times,
         })
     }
 
@@ -438,6 +456,7 @@ impl Renderer {
         encoder: &mut wgpu::CommandEncoder,
         ranges: &Ranges,
         culled: Option<&FaceRanges>,
+        timed: bool,
     ) -> u32 {
         let (balls, tumblers) = match culled {
             Some(_) => (&self.shadow_balls.buffer, &self.shadow_tumblers.buffer),
@@ -456,7 +475,12 @@ impl Renderer {
                     }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: None,
+                // The first face's start and the last one's end.
+                timestamp_writes: self
+                    .timer
+                    .as_ref()
+                    .filter(|_| timed && (face == 0 || face == 5))
+                    .map(|t| t.writes((face == 0).then_some(0), (face == 5).then_some(1))),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
@@ -483,6 +507,7 @@ impl Renderer {
         targets: &Targets,
         ranges: &Ranges,
         lines_over: u32,
+        timed: bool,
     ) -> u32 {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("scene"),
@@ -503,7 +528,11 @@ impl Renderer {
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: None,
+            timestamp_writes: self
+                .timer
+                .as_ref()
+                .filter(|_| timed)
+                .map(|t| t.writes(Some(2), Some(3))),
             occlusion_query_set: None,
             multiview_mask: None,
         });
@@ -553,6 +582,7 @@ impl Renderer {
         encoder: &mut wgpu::CommandEncoder,
         targets: &Targets,
         output: &wgpu::TextureView,
+        timed: bool,
     ) -> u32 {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("tonemap"),
@@ -566,7 +596,11 @@ impl Renderer {
                 },
             })],
             depth_stencil_attachment: None,
-            timestamp_writes: None,
+            timestamp_writes: self
+                .timer
+                .as_ref()
+                .filter(|_| timed)
+                .map(|t| t.writes(Some(4), Some(5))),
             occlusion_query_set: None,
             multiview_mask: None,
         });

@@ -121,7 +121,7 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 20] = [
+const KEYS: [(&str, &str); 21] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
@@ -149,6 +149,7 @@ const KEYS: [(&str, &str); 20] = [
         "1 to 6",
         "debug views: contacts, impulses, velocities, grid, rest, centre of mass",
     ),
+    ("F3", "profiler: the step's stages and the frame's passes"),
     ("H or F1", "this help"),
     ("F12", "screenshot (PNG)"),
     ("Esc", "release the mouse"),

@@ -8,6 +8,7 @@ mod hud;
 mod log;
 mod orbit_camera;
 mod panel;
+mod profiler;
 mod quality;
 
 pub use app::{WindowOptions, run};

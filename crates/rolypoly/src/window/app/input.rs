@@ -176,6 +176,11 @@ impl App {
             }
             KeyCode::KeyI => self.restart(),
             KeyCode::KeyO => self.toggle_orbit(),
+            KeyCode::F3 => {
+                self.profiler.open = !self.profiler.open;
+                self.log
+                    .say("profiler", json!({ "open": self.profiler.open }));
+            }
             KeyCode::Digit1
             | KeyCode::Digit2
             | KeyCode::Digit3

@@ -29,6 +29,7 @@ use super::hud::{Hud, HudState};
 use super::log::EventLog;
 use super::orbit_camera::OrbitCamera;
 use super::panel::Panel;
+use super::profiler::{FrameProfile, Profiler};
 use super::quality::WindowQuality;
 use crate::sandbox::{MAX_CATCH_UP, Sandbox};
 use input::{Keys, MouseMode};
@@ -124,6 +125,9 @@ struct App {
     quality: WindowQuality,
     /// The time the last frame spent simulating, which its drawing did not.
     last_simulation: Duration,
+    /// The profiler (F3), and when the window opened (its plots' zero).
+    profiler: Profiler,
+    opened: Instant,
     /// Frames drawn since the frame rate was last logged, and since when.
     frames_counted: u32,
     counting_since: Instant,
@@ -171,6 +175,8 @@ impl App {
             panel: Panel::new(options.scene_file.clone()),
             quality: WindowQuality::new(sandbox.scene().quality, options.msaa),
             last_simulation: Duration::ZERO,
+            profiler: Profiler::default(),
+            opened: Instant::now(),
             frames_counted: 0,
             counting_since: Instant::now(),
             sandbox,
@@ -231,6 +237,7 @@ impl App {
         let drawing = Duration::from_secs_f64(elapsed).saturating_sub(self.last_simulation);
         self.simulate(elapsed);
         self.last_simulation = now.elapsed();
+        let (steps, step_count) = self.sandbox.sim.take_step_times();
         self.follow_quality(drawing);
         if self.options.replay_digest.is_some() {
             self.follow_replay();
@@ -287,19 +294,33 @@ impl App {
         let target = texture.texture.create_view(&Default::default());
         r.renderer.set_cursor(cursor);
         let (w, h) = (r.config.width, r.config.height);
-        match r.renderer.render(&r.gpu, &view, &camera, &target, w, h) {
-            Ok(stats) => self.hud_state.render_cpu = stats.cpu_time.as_secs_f64(),
+        let stats = match r.renderer.render(&r.gpu, &view, &camera, &target, w, h) {
+            Ok(stats) => stats,
             Err(e) => {
                 self.fail(event_loop, e.into());
                 return;
             }
-        }
-        let (panel, sandbox) = (&mut self.panel, &mut self.sandbox);
+        };
+        self.hud_state.render_cpu = stats.cpu_time.as_secs_f64();
+        let balls = view.balls.len();
+        let (panel, sandbox, profiler) = (&mut self.panel, &mut self.sandbox, &self.profiler);
         let mut action = None;
+        let hud_started = Instant::now();
         r.hud
             .draw(&r.window, &r.gpu, &target, [w, h], &self.hud_state, |ui| {
                 action = panel.show(ui, sandbox);
+                profiler.show(ui.ctx());
             });
+        self.profiler.push(FrameProfile {
+            at: (now - self.opened).as_secs_f64(),
+            frame: Duration::from_secs_f64(elapsed),
+            steps,
+            step_count,
+            render_cpu: stats.cpu_time,
+            ui: hud_started.elapsed(),
+            gpu: stats.gpu,
+            balls,
+        });
         r.gpu.queue.present(texture);
         self.count_frame();
         if let Some(action) = action {
