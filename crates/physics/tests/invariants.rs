@@ -166,3 +166,27 @@ fn same_seed_gives_bit_identical_states_other_seed_differs() {
     assert!(a == b, "two runs with the same seed differ");
     assert!(a != c, "another seed gives the same run");
 }
+
+/// A bed of 100 000 balls packed from the start, where one band of the
+/// crowd's pairs holds more than half of a run's: its first steps run and
+/// keep every ball in the room. (Splitting such a run between threads once
+/// handed the whole run on again, without end.)
+#[test]
+fn a_hundred_thousand_balls_packed_from_the_start_step() {
+    let mut cfg = WorldConfig::default();
+    cfg.balls.count = 100_000;
+    cfg.balls.radius = 0.1;
+    cfg.balls.start_fill = 0.4;
+    cfg.room.size = glam::DVec3::new(24.0, 5.0, 24.0);
+    let mut w = World::new(cfg, 1).expect("scene builds");
+    for _ in 0..3 {
+        w.step();
+    }
+    let room = *w.room();
+    assert!(
+        w.balls()
+            .positions()
+            .iter()
+            .all(|p| { p.is_finite() && p.cmpge(room.min).all() && p.cmple(room.max).all() })
+    );
+}

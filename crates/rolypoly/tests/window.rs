@@ -142,6 +142,25 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
     });
     assert_ne!(walked["position"], before);
 
+    // 1 shows the contacts, F3 opens the profiler, O takes the orbit
+    // camera and gives the view back; the camera then stands where it was.
+    s.xdotool(&["key", "1"]);
+    s.expect("the contacts view", |v| {
+        v["event"] == "debug_view" && v["view"] == "contacts" && v["on"] == true
+    });
+    s.xdotool(&["key", "F3"]);
+    s.expect("the profiler", |v| {
+        v["event"] == "profiler" && v["open"] == true
+    });
+    s.xdotool(&["key", "o"]);
+    s.expect("the orbit camera", |v| {
+        v["event"] == "orbit" && v["on"] == true
+    });
+    s.xdotool(&["key", "o"]);
+    s.expect("the fly camera again", |v| {
+        v["event"] == "orbit" && v["on"] == false
+    });
+
     // F: the fireball appears.
     s.xdotool(&["key", "f"]);
     s.expect("the fireball", |v| {

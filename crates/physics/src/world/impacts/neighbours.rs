@@ -83,9 +83,11 @@ impl Bands<'_> {
         let (lo, hi) = (self.layers[run.start], self.layers[run.end]);
         let pairs: usize = self.pair_slots[run.clone()].iter().map(Vec::len).sum();
         if pairs >= LIST_ALONE && run.len() > 1 {
-            // Split where half the pairs lie before.
+            // Split where half the pairs lie before, leaving a band on each
+            // side: where the last band holds more than half, it goes alone
+            // (a split at the run's end would hand the whole run on again).
             let mut before = 0;
-            let mid = run.start
+            let mid = (run.start
                 + 1
                 + self.pair_slots[run.start..run.end - 1]
                     .iter()
@@ -93,7 +95,8 @@ impl Bands<'_> {
                         before += band.len();
                         2 * before < pairs
                     })
-                    .count();
+                    .count())
+            .min(run.end - 1);
             let at = self.layers[mid];
             let (cursor_lo, cursor_hi) = cursor.split_at_mut(at - lo);
             let entries = (self.first[at] - self.first[lo]) as usize;
