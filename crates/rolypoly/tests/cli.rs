@@ -827,3 +827,34 @@ fn assert_clean_failure_with_output(output: &Output) -> String {
     assert!(!err.contains("panicked"), "{err}");
     err
 }
+
+#[test]
+fn an_unknown_debug_view_is_a_clear_error_listing_the_views() {
+    let output = rolypoly(&["render", "--show", "contacts,bogus", "--out", "never.png"]);
+    assert!(!output.status.success());
+    let text = stderr(&output);
+    assert!(text.contains("`bogus` is not a debug view"), "{text}");
+    assert!(
+        text.contains("contacts, impulses, velocities, grid, rest, com"),
+        "{text}"
+    );
+    assert!(!text.contains("panicked"), "{text}");
+}
+
+#[test]
+fn render_show_draws_the_views_it_names() {
+    let (plain, shown) = (scratch("no-views.png"), scratch("views.png"));
+    for (out, extra) in [(&plain, None), (&shown, Some("velocities,grid"))] {
+        let out_str = out.to_str().expect("UTF-8 path");
+        let mut args = vec![
+            "render", "--time", "0.5", "--size", "160x90", "--out", out_str,
+        ];
+        if let Some(views) = extra {
+            args.extend(["--show", views]);
+        }
+        let output = rolypoly(&args);
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let changed = pixels_differing(&plain, &shown, 12);
+    assert!(changed > 30, "--show changed only {changed} pixels");
+}
