@@ -330,7 +330,7 @@ fn contacts(world: &World, events: &[Event]) -> Vec<Shown> {
 }
 
 /// A colour for `speed` (m/s): grey at rest, then blue through green to
-/// red at [`FAST`] and over.
+/// red at 4 m/s and over.
 pub fn speed_color(speed: f32) -> Vec3 {
     if speed < REST_SPEED {
         return Vec3::splat(0.35);

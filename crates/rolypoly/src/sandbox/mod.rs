@@ -118,7 +118,7 @@ impl Sandbox {
     /// Takes `input` from the player: what it does to the world or the
     /// settings, kept in the journal when it did something. After going
     /// back, anything but a camera's move forgets the future the first time
-    /// had (see [`rewind`]).
+    /// had (see the `rewind` module).
     pub fn apply(&mut self, input: Input) -> Result<(), Refused> {
         if !matches!(input, Input::Camera { .. }) {
             self.history.branch(self.ticks);
