@@ -3,8 +3,12 @@
 //! mesh the renderer can draw: whole triangles, every index a vertex,
 //! every number finite, every normal of some length.
 
+#[path = "../../../tests/text_edits.rs"]
+mod text_edits;
+
 use proptest::prelude::*;
 use rolypoly_render::{DEFAULT_TUMBLER_OBJ, MeshData, from_obj};
+use text_edits::TextEdit;
 
 /// Cases per property.
 const CASES: u32 = 600;
@@ -76,20 +80,7 @@ fn check(text: &str) -> Result<(), TestCaseError> {
 }
 
 /// One edit of an OBJ file's text.
-#[derive(Clone, Debug)]
-enum Edit {
-    DeleteLine(usize),
-    DuplicateLine(usize),
-    SwapLines(usize, usize),
-    /// The `k`-th number in the text (a coordinate or an index) becomes this.
-    Number(usize, String),
-    /// A character replaced at a place in the text.
-    Char(usize, char),
-    Truncate(usize),
-    Insert(usize, String),
-}
-
-fn edit() -> impl Strategy<Value = Edit> {
+fn edit() -> impl Strategy<Value = TextEdit> {
     let number = prop_oneof![
         any::<f32>().prop_map(|x| x.to_string()),
         any::<i64>().prop_map(|x| x.to_string()),
@@ -135,67 +126,20 @@ fn edit() -> impl Strategy<Value = Edit> {
         "[a-z0-9 ./\\-\n]{1,12}",
     ];
     prop_oneof![
-        any::<usize>().prop_map(Edit::DeleteLine),
-        any::<usize>().prop_map(Edit::DuplicateLine),
-        (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Edit::SwapLines(a, b)),
-        (any::<usize>(), number).prop_map(|(k, n)| Edit::Number(k, n)),
-        (any::<usize>(), any::<char>()).prop_map(|(at, c)| Edit::Char(at, c)),
-        any::<usize>().prop_map(Edit::Truncate),
-        (any::<usize>(), token).prop_map(|(at, t)| Edit::Insert(at, t)),
+        any::<usize>().prop_map(TextEdit::DeleteLine),
+        any::<usize>().prop_map(TextEdit::DuplicateLine),
+        (any::<usize>(), any::<usize>()).prop_map(|(a, b)| TextEdit::SwapLines(a, b)),
+        (any::<usize>(), number).prop_map(|(k, n)| TextEdit::Number(k, n)),
+        (any::<usize>(), any::<char>()).prop_map(|(at, c)| TextEdit::Char(at, c)),
+        any::<usize>().prop_map(TextEdit::Truncate),
+        (any::<usize>(), token).prop_map(|(at, t)| TextEdit::Insert(at, t)),
     ]
 }
 
-/// The char boundary at or before `at % (len + 1)`.
-fn boundary(text: &str, at: usize) -> usize {
-    let mut at = at % (text.len() + 1);
-    while !text.is_char_boundary(at) {
-        at -= 1;
-    }
-    at
-}
-
-/// `span` of `text` replaced by `with`.
-fn splice(text: &str, (start, end): (usize, usize), with: &str) -> String {
-    format!("{}{with}{}", &text[..start], &text[end..])
-}
-
-fn apply(text: &str, edit: &Edit) -> String {
-    let mut lines: Vec<&str> = text.lines().collect();
-    let n = lines.len().max(1);
-    let joined = |lines: Vec<&str>| lines.iter().map(|l| format!("{l}\n")).collect();
-    match edit {
-        Edit::DeleteLine(k) if !lines.is_empty() => {
-            lines.remove(k % n);
-            joined(lines)
-        }
-        Edit::DuplicateLine(k) if !lines.is_empty() => {
-            let k = k % n;
-            lines.insert(k, lines[k]);
-            joined(lines)
-        }
-        Edit::SwapLines(a, b) if !lines.is_empty() => {
-            lines.swap(a % n, b % n);
-            joined(lines)
-        }
-        Edit::Number(k, with) => match nth_number(text, *k) {
-            Some(span) => splice(text, span, with),
-            None => text.to_owned(),
-        },
-        Edit::Char(at, c) => {
-            let at = boundary(text, *at);
-            let end = text[at..]
-                .chars()
-                .next()
-                .map_or(at, |old| at + old.len_utf8());
-            splice(text, (at, end), &c.to_string())
-        }
-        Edit::Truncate(at) => text[..boundary(text, *at)].to_owned(),
-        Edit::Insert(at, with) => {
-            let at = boundary(text, *at);
-            splice(text, (at, at), with)
-        }
-        _ => text.to_owned(),
-    }
+/// `text` with `edit` made.
+fn apply(text: &str, edit: &TextEdit) -> String {
+    let numbers: Vec<(usize, usize)> = number_spans(text).collect();
+    text_edits::apply(text, edit, &numbers)
 }
 
 /// Byte spans of the numbers in `text`: coordinates, and the indices
@@ -223,12 +167,6 @@ fn number_spans(text: &str) -> impl Iterator<Item = (usize, usize)> + '_ {
         }
         None
     })
-}
-
-/// The `k`-th number's span, counted modulo how many there are.
-fn nth_number(text: &str, k: usize) -> Option<(usize, usize)> {
-    let count = number_spans(text).count();
-    number_spans(text).nth(k % count.max(1))
 }
 
 proptest! {

@@ -6,9 +6,13 @@
 use std::sync::LazyLock;
 
 use glam::DVec3;
+#[path = "../../../tests/text_edits.rs"]
+mod text_edits;
+
 use proptest::prelude::*;
 use rolypoly::sandbox::{Input, REPLAY_FORMAT, ReplayLog, SHIPPED_SCENES, Sandbox};
 use rolypoly::scene::{Scene, parse_scene};
+use text_edits::{TextEdit, joined, splice};
 
 /// Cases per property.
 const CASES: u32 = 600;
@@ -163,21 +167,13 @@ fn check(text: &str) -> Result<(), TestCaseError> {
 /// One edit of a recording's text.
 #[derive(Clone, Debug)]
 enum Edit {
-    DeleteLine(usize),
-    DuplicateLine(usize),
-    /// Two lines swap places.
-    SwapLines(usize, usize),
-    /// The `k`-th number in the text becomes this.
-    Number(usize, String),
+    /// An edit any text may take.
+    Text(TextEdit),
     /// The `k`-th input's kind becomes this, its fields left as they were.
     Kind(usize, &'static str),
     /// An input line put before the `k`-th line, at that line's tick (so
     /// that the order holds and the log may be read and replayed).
     Line(usize, &'static str),
-    /// A character replaced at a place in the text.
-    Char(usize, char),
-    Truncate(usize),
-    Insert(usize, String),
 }
 
 /// Inputs as a recording's lines hold them, less the tick: the odd ones a
@@ -244,10 +240,10 @@ fn line() -> impl Strategy<Value = Edit> {
 /// Edits that keep each line JSON: numbers changed, lines moved about.
 fn json_edit() -> impl Strategy<Value = Edit> {
     prop_oneof![
-        1 => any::<usize>().prop_map(Edit::DeleteLine),
-        1 => any::<usize>().prop_map(Edit::DuplicateLine),
-        1 => (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Edit::SwapLines(a, b)),
-        4 => (any::<usize>(), json_number()).prop_map(|(k, n)| Edit::Number(k, n)),
+        1 => any::<usize>().prop_map(|k| Edit::Text(TextEdit::DeleteLine(k))),
+        1 => any::<usize>().prop_map(|k| Edit::Text(TextEdit::DuplicateLine(k))),
+        1 => (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Edit::Text(TextEdit::SwapLines(a, b))),
+        4 => (any::<usize>(), json_number()).prop_map(|(k, n)| Edit::Text(TextEdit::Number(k, n))),
         2 => line(),
     ]
 }
@@ -285,50 +281,24 @@ fn edit() -> impl Strategy<Value = Edit> {
         "[a-z_\"{}\\[\\]:,0-9 .\\\\\n-]{1,12}",
     ];
     prop_oneof![
-        1 => any::<usize>().prop_map(Edit::DeleteLine),
-        1 => any::<usize>().prop_map(Edit::DuplicateLine),
-        1 => (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Edit::SwapLines(a, b)),
-        3 => (any::<usize>(), number).prop_map(|(k, n)| Edit::Number(k, n)),
+        1 => any::<usize>().prop_map(|k| Edit::Text(TextEdit::DeleteLine(k))),
+        1 => any::<usize>().prop_map(|k| Edit::Text(TextEdit::DuplicateLine(k))),
+        1 => (any::<usize>(), any::<usize>()).prop_map(|(a, b)| Edit::Text(TextEdit::SwapLines(a, b))),
+        3 => (any::<usize>(), number).prop_map(|(k, n)| Edit::Text(TextEdit::Number(k, n))),
         1 => (any::<usize>(), proptest::sample::select(&KINDS[..])).prop_map(|(k, kind)| Edit::Kind(k, kind)),
         1 => line(),
-        1 => (any::<usize>(), any::<char>()).prop_map(|(at, c)| Edit::Char(at, c)),
-        1 => any::<usize>().prop_map(Edit::Truncate),
-        2 => (any::<usize>(), token).prop_map(|(at, t)| Edit::Insert(at, t)),
+        1 => (any::<usize>(), any::<char>()).prop_map(|(at, c)| Edit::Text(TextEdit::Char(at, c))),
+        1 => any::<usize>().prop_map(|k| Edit::Text(TextEdit::Truncate(k))),
+        2 => (any::<usize>(), token).prop_map(|(at, t)| Edit::Text(TextEdit::Insert(at, t))),
     ]
 }
 
-/// The char boundary at or before `at % (len + 1)`.
-fn boundary(text: &str, at: usize) -> usize {
-    let mut at = at % (text.len() + 1);
-    while !text.is_char_boundary(at) {
-        at -= 1;
-    }
-    at
-}
-
-/// `span` of `text` replaced by `with`.
-fn splice(text: &str, (start, end): (usize, usize), with: &str) -> String {
-    format!("{}{with}{}", &text[..start], &text[end..])
-}
-
+/// `text` with `edit` made.
 fn apply(text: &str, edit: &Edit) -> String {
     let mut lines: Vec<&str> = text.lines().collect();
     let n = lines.len().max(1);
-    let joined = |lines: Vec<&str>| lines.iter().map(|l| format!("{l}\n")).collect();
     match edit {
-        Edit::DeleteLine(k) if !lines.is_empty() => {
-            lines.remove(k % n);
-            joined(lines)
-        }
-        Edit::DuplicateLine(k) if !lines.is_empty() => {
-            let k = k % n;
-            lines.insert(k, lines[k]);
-            joined(lines)
-        }
-        Edit::SwapLines(a, b) if !lines.is_empty() => {
-            lines.swap(a % n, b % n);
-            joined(lines)
-        }
+        Edit::Text(edit) => text_edits::apply(text, edit, &number_spans(text)),
         Edit::Line(k, body) if !lines.is_empty() => {
             // After the first line; at the end, at the last tick.
             let k = 1 + k % n;
@@ -352,14 +322,7 @@ fn apply(text: &str, edit: &Edit) -> String {
             };
             let new = format!("{{\"tick\":{tick},{body}");
             lines.insert(k, &new);
-            joined(lines)
-        }
-        Edit::Number(k, with) => {
-            let spans = number_spans(text);
-            match spans.get(k % spans.len().max(1)) {
-                Some(&span) => splice(text, span, with),
-                None => text.to_owned(),
-            }
+            joined(&lines)
         }
         Edit::Kind(k, kind) => {
             let spans: Vec<(usize, usize)> = text
@@ -373,19 +336,6 @@ fn apply(text: &str, edit: &Edit) -> String {
                 Some(&span) => splice(text, span, kind),
                 None => text.to_owned(),
             }
-        }
-        Edit::Char(at, c) => {
-            let at = boundary(text, *at);
-            let end = text[at..]
-                .chars()
-                .next()
-                .map_or(at, |old| at + old.len_utf8());
-            splice(text, (at, end), &c.to_string())
-        }
-        Edit::Truncate(at) => text[..boundary(text, *at)].to_owned(),
-        Edit::Insert(at, with) => {
-            let at = boundary(text, *at);
-            splice(text, (at, at), with)
         }
         _ => text.to_owned(),
     }

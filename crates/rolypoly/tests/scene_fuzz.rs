@@ -3,10 +3,14 @@
 //! valid scene, which builds a world (or says why not) and saves to a
 //! file that loads back as the identical scene.
 
+#[path = "../../../tests/text_edits.rs"]
+mod text_edits;
+
 use proptest::prelude::*;
 use rolypoly::sandbox::SHIPPED_SCENES;
 use rolypoly::scene::{Scene, parse_scene, scene_file_text, validate};
 use rolypoly_physics::World;
+use text_edits::TextEdit;
 
 /// Cases per property.
 const CASES: u32 = 1500;
@@ -39,19 +43,7 @@ fn check(text: &str) -> Result<(), TestCaseError> {
 }
 
 /// One edit of a scene file's text.
-#[derive(Clone, Debug)]
-enum Edit {
-    DeleteLine(usize),
-    DuplicateLine(usize),
-    /// The `k`-th number in the text becomes this.
-    Number(usize, String),
-    /// A character replaced at a place in the text.
-    Char(usize, char),
-    Truncate(usize),
-    Insert(usize, String),
-}
-
-fn edit() -> impl Strategy<Value = Edit> {
+fn edit() -> impl Strategy<Value = TextEdit> {
     let number = prop_oneof![
         any::<f64>().prop_map(|x| x.to_string()),
         any::<i64>().prop_map(|x| x.to_string()),
@@ -77,72 +69,19 @@ fn edit() -> impl Strategy<Value = Edit> {
         "[a-z_.\\[\\]=0-9 ,\n\"]{1,12}",
     ];
     prop_oneof![
-        any::<usize>().prop_map(Edit::DeleteLine),
-        any::<usize>().prop_map(Edit::DuplicateLine),
-        (any::<usize>(), number).prop_map(|(k, n)| Edit::Number(k, n)),
-        (any::<usize>(), any::<char>()).prop_map(|(at, c)| Edit::Char(at, c)),
-        any::<usize>().prop_map(Edit::Truncate),
-        (any::<usize>(), token).prop_map(|(at, t)| Edit::Insert(at, t)),
+        any::<usize>().prop_map(TextEdit::DeleteLine),
+        any::<usize>().prop_map(TextEdit::DuplicateLine),
+        (any::<usize>(), any::<usize>()).prop_map(|(a, b)| TextEdit::SwapLines(a, b)),
+        (any::<usize>(), number).prop_map(|(k, n)| TextEdit::Number(k, n)),
+        (any::<usize>(), any::<char>()).prop_map(|(at, c)| TextEdit::Char(at, c)),
+        any::<usize>().prop_map(TextEdit::Truncate),
+        (any::<usize>(), token).prop_map(|(at, t)| TextEdit::Insert(at, t)),
     ]
 }
 
-/// The char boundary at or before `at % (len + 1)`.
-fn boundary(text: &str, at: usize) -> usize {
-    let mut at = at % (text.len() + 1);
-    while !text.is_char_boundary(at) {
-        at -= 1;
-    }
-    at
-}
-
-fn apply(text: &str, edit: &Edit) -> String {
-    let lines: Vec<&str> = text.lines().collect();
-    let line = |k: usize| k % lines.len().max(1);
-    match edit {
-        Edit::DeleteLine(k) if !lines.is_empty() => {
-            let k = line(*k);
-            lines
-                .iter()
-                .enumerate()
-                .filter(|&(i, _)| i != k)
-                .map(|(_, l)| format!("{l}\n"))
-                .collect()
-        }
-        Edit::DuplicateLine(k) if !lines.is_empty() => {
-            let k = line(*k);
-            let mut out = String::new();
-            for (i, l) in lines.iter().enumerate() {
-                out += l;
-                out.push('\n');
-                if i == k {
-                    out += l;
-                    out.push('\n');
-                }
-            }
-            out
-        }
-        Edit::Number(k, n) => {
-            let numbers: Vec<(usize, usize)> = number_spans(text);
-            match numbers.get(k % numbers.len().max(1)) {
-                Some(&(start, end)) => format!("{}{n}{}", &text[..start], &text[end..]),
-                None => text.to_owned(),
-            }
-        }
-        Edit::Char(at, c) => {
-            let at = boundary(text, *at);
-            let end = text[at..]
-                .chars()
-                .next()
-                .map_or(at, |old| at + old.len_utf8());
-            format!("{}{c}{}", &text[..at], &text[end..])
-        }
-        Edit::Truncate(at) => text[..boundary(text, *at)].to_owned(),
-        Edit::Insert(at, t) => {
-            let at = boundary(text, *at);
-            format!("{}{t}{}", &text[..at], &text[at..])
-        }
-        _ => text.to_owned(),
-    }
+/// `text` with `edit` made.
+fn apply(text: &str, edit: &TextEdit) -> String {
+    text_edits::apply(text, edit, &number_spans(text))
 }
 
 /// Byte spans of the numbers written in `text` outside comments.
