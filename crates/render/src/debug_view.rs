@@ -6,6 +6,7 @@
 //! Built each frame on the processor from the world and the last step's
 //! events, as plain line segments; the renderer draws them all in one call.
 
+use std::collections::HashMap;
 use std::fmt;
 
 use glam::{DVec3, Vec3};
@@ -277,6 +278,15 @@ fn contacts(world: &World, events: &[Event]) -> Vec<Shown> {
             probe,
         })
         .collect();
+    // The contacts by what they join, so that each event finds its own
+    // without a walk over every contact (a crowd has tens of thousands).
+    let mut by_bodies: HashMap<(ContactKind, [Option<usize>; 2]), Vec<usize>> = HashMap::new();
+    for (k, s) in shown.iter().enumerate() {
+        by_bodies
+            .entry((s.probe.kind, s.probe.balls))
+            .or_default()
+            .push(k);
+    }
     let balls = world.balls();
     let config = world.config();
     for e in events {
@@ -305,25 +315,29 @@ fn contacts(world: &World, events: &[Event]) -> Vec<Shown> {
             ),
             _ => continue,
         };
-        let same = |s: &Shown| {
-            s.probe.kind == kind
-                && s.probe.balls == pair
-                && (kind != ContactKind::BallWall || s.probe.normal.dot(e.normal) > 0.9)
-        };
-        match shown.iter_mut().find(|s| same(s)) {
-            Some(s) => s.state = State::Impact,
-            None => shown.push(Shown {
-                probe: ContactProbe {
-                    kind,
-                    balls: pair,
-                    kept: false,
-                    point: e.point,
-                    normal: e.normal,
-                    impulse: (1.0 + restitution) * mass * e.speed,
-                    friction: DVec3::ZERO,
-                },
-                state: State::Impact,
-            }),
+        // A ball's walls are told apart by their normals.
+        let candidates = by_bodies.entry((kind, pair)).or_default();
+        let same = candidates
+            .iter()
+            .copied()
+            .find(|&k| kind != ContactKind::BallWall || shown[k].probe.normal.dot(e.normal) > 0.9);
+        match same {
+            Some(k) => shown[k].state = State::Impact,
+            None => {
+                candidates.push(shown.len());
+                shown.push(Shown {
+                    probe: ContactProbe {
+                        kind,
+                        balls: pair,
+                        kept: false,
+                        point: e.point,
+                        normal: e.normal,
+                        impulse: (1.0 + restitution) * mass * e.speed,
+                        friction: DVec3::ZERO,
+                    },
+                    state: State::Impact,
+                });
+            }
         }
     }
     shown

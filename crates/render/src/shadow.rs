@@ -61,19 +61,20 @@ pub fn faces_reached(light: Vec3, centre: Vec3, radius: f32) -> u8 {
 /// Sorts `casters` into `out` face by face, each only into the faces it can
 /// cast into with the bounding sphere (centre, radius) `sphere_of` gives
 /// for its index; returns each face's range of `out`. The spheres are
-/// tested once each, then listed face by face.
+/// tested once each, into `reached` (kept by the caller, so that a frame
+/// allocates nothing), then listed face by face.
 pub fn sort_into_faces<T: Copy>(
     casters: &[T],
     sphere_of: impl Fn(usize) -> (Vec3, f32),
     light: Vec3,
+    reached: &mut Vec<u8>,
     out: &mut Vec<T>,
 ) -> [std::ops::Range<u32>; 6] {
-    let reached: Vec<u8> = (0..casters.len())
-        .map(|k| {
-            let (centre, radius) = sphere_of(k);
-            faces_reached(light, centre, radius)
-        })
-        .collect();
+    reached.clear();
+    reached.extend((0..casters.len()).map(|k| {
+        let (centre, radius) = sphere_of(k);
+        faces_reached(light, centre, radius)
+    }));
     out.clear();
     std::array::from_fn(|face| {
         let start = out.len() as u32;
@@ -81,7 +82,7 @@ pub fn sort_into_faces<T: Copy>(
         out.extend(
             casters
                 .iter()
-                .zip(&reached)
+                .zip(reached.iter())
                 .filter(|(_, faces)| *faces & bit != 0)
                 .map(|(caster, _)| *caster),
         );
@@ -265,7 +266,7 @@ mod tests {
                 .collect();
             let indices: Vec<usize> = (0..balls.len()).collect();
             let mut out = Vec::new();
-            let faces = sort_into_faces(&indices, |k| balls[k], light, &mut out);
+            let faces = sort_into_faces(&indices, |k| balls[k], light, &mut Vec::new(), &mut out);
             assert!(faces[2].is_empty(), "nothing above the light: {faces:?}");
             let total: usize = faces.iter().map(|r| r.len()).sum();
             assert!(total >= balls.len() && total < 2 * balls.len(), "{total}");

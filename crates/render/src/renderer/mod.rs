@@ -173,6 +173,8 @@ pub struct Renderer {
     shadow_tumblers: InstanceBuffer<Instance>,
     /// The debug views' line segments (see [`crate::debug_view`]).
     lines: VertexBuffer,
+    /// The faces each caster reaches, reused frame to frame.
+    faces_reached: Vec<u8>,
     /// The tumbler mesh's bounding sphere, in its own space.
     tumbler_bounds: (glam::Vec3, f32),
     targets: Option<Targets>,
@@ -263,6 +265,7 @@ impl Renderer {
             shadow_balls: InstanceBuffer::new(device, "shadow balls"),
             shadow_tumblers: InstanceBuffer::new(device, "shadow tumblers"),
             lines: InstanceBuffer::new(device, "debug lines"),
+            faces_reached: Vec::new(),
             tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
             timer: GpuTimer::new(device, &gpu.queue),
@@ -429,6 +432,7 @@ impl Renderer {
             ball_items,
             |k| ball_items[k].sphere(),
             light,
+            &mut self.faces_reached,
             &mut self.shadow_balls.items,
         );
         let (centre, radius) = self.tumbler_bounds;
@@ -441,6 +445,7 @@ impl Renderer {
                 (t.model().transform_point3(centre), radius * t.scale)
             },
             light,
+            &mut self.faces_reached,
             &mut self.shadow_tumblers.items,
         );
         self.shadow_balls.upload(gpu);
