@@ -45,6 +45,7 @@ use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::Instant;
 
+mod elsewhere;
 mod find_contacts;
 mod fireball_flight;
 mod flight;

@@ -1,0 +1,631 @@
+//! The ball engine: the balls' state on the GPU and the step that advances
+//! it, recorded pass by pass into one submission.
+
+use crate::GpuError;
+use crate::bindings::{Buffers, Sizes};
+use crate::device::{STORAGE_BUFFERS, describe};
+use crate::layout::{Body, Catch, EVENT_CAPACITY, FIREBALL, MAX_ITEMS, Params, groups};
+use crate::passes::Passes;
+use crate::readback::read_buffer;
+use crate::scan::Scan;
+use glam::{DVec3, Vec3};
+use rolypoly_physics::{Balls, Event, EventKind, Tint, World};
+
+/// Thrown balls a run can add on top of its scene's.
+pub const THROW_ROOM: u64 = 1024;
+/// Jacobi sweeps of the velocity solver for each of the scene's
+/// `solver.iterations`: a Jacobi sweep carries an impulse one contact
+/// further, as a Gauss-Seidel sweep does, but with a smaller share.
+const SWEEPS_PER_ITERATION: u32 = 4;
+/// Sweeps that push overlapping balls apart after they move.
+const SHIFT_SWEEPS: u32 = 8;
+/// How much of what a sweep asks each contact applies, over its share.
+const RELAXATION: f32 = 1.0;
+/// The speculative margin, in the largest ball's radii: contacts this near
+/// are solved even if they do not close.
+const MARGIN_RADII: f64 = 0.05;
+/// The grid's cell, in the largest ball's radii: a pair closing by up to a
+/// radius in a step is found.
+const CELL_RADII: f64 = 3.0;
+
+/// The balls as read back: one entry per ball, thrown ones included.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BallState {
+    /// Centres (m).
+    pub positions: Vec<Vec3>,
+    /// Velocities (m/s).
+    pub velocities: Vec<Vec3>,
+    /// Angular velocities (rad/s).
+    pub spins: Vec<Vec3>,
+    /// Radii (m).
+    pub radii: Vec<f32>,
+    /// Inverse masses (1/kg).
+    pub inverse_masses: Vec<f32>,
+    /// Whether each is still in play (not caught by the fireball).
+    pub alive: Vec<bool>,
+    /// The colour each shows.
+    pub colors: Vec<[f32; 3]>,
+}
+
+impl BallState {
+    /// Kinetic energy of the live balls, moving and turning (J).
+    pub fn kinetic_energy(&self) -> f64 {
+        (0..self.positions.len())
+            .filter(|&i| self.alive[i])
+            .map(|i| {
+                let m = 1.0 / f64::from(self.inverse_masses[i]);
+                let r = f64::from(self.radii[i]);
+                let inertia = 0.4 * m * r * r;
+                0.5 * m * self.velocities[i].as_dvec3().length_squared()
+                    + 0.5 * inertia * self.spins[i].as_dvec3().length_squared()
+            })
+            .sum()
+    }
+
+    /// Total momentum of the live balls (N s).
+    pub fn momentum(&self) -> DVec3 {
+        (0..self.positions.len())
+            .filter(|&i| self.alive[i])
+            .map(|i| self.velocities[i].as_dvec3() / f64::from(self.inverse_masses[i]))
+            .sum()
+    }
+}
+
+/// Where each kind of colour starts in the palette.
+#[derive(Clone, Copy, Debug)]
+struct PaletteLayout {
+    tumblers: u32,
+    placed: u32,
+}
+
+impl PaletteLayout {
+    /// White first, then the six surfaces, the tumblers, the placed balls.
+    const SURFACES: u32 = 1;
+
+    fn index(self, tint: Tint) -> u32 {
+        match tint {
+            Tint::White => 0,
+            Tint::Surface(s) => Self::SURFACES + s.index() as u32,
+            Tint::Tumbler(t) => self.tumblers + t as u32,
+            Tint::Placed(k) => self.placed + k as u32,
+        }
+    }
+}
+
+/// The balls of a world, simulated on the GPU. The world keeps its
+/// tumblers and fireball and steps them itself; each step the balls meet
+/// them where the world has put them, and push them back (see
+/// [`GpuBalls::step`]).
+pub struct GpuBalls {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    adapter: String,
+    buffers: Buffers,
+    bind_group: wgpu::BindGroup,
+    passes: Passes,
+    scan: Scan,
+    params: Params,
+    /// Balls the buffers hold room for.
+    capacity: u64,
+    cells: u64,
+    tumblers: usize,
+    palette: Vec<[f32; 4]>,
+    palette_layout: PaletteLayout,
+    solve_sweeps: u32,
+    /// The small buffer the step's pushes and catches come back in.
+    report: wgpu::Buffer,
+    catches: Vec<Event>,
+    steps: u64,
+}
+
+impl GpuBalls {
+    /// Takes the balls out of `world` and puts them on `device`. `adapter`
+    /// names the device's adapter, for messages.
+    pub fn new(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        adapter: &wgpu::Adapter,
+        world: &mut World,
+    ) -> Result<GpuBalls, GpuError> {
+        crate::device::check_compute(adapter)?;
+        GpuBalls::on(device, queue, describe(adapter), world)
+    }
+
+    /// As [`GpuBalls::new`], on a device opened by [`crate::Compute`].
+    pub fn on_compute(compute: &crate::Compute, world: &mut World) -> Result<GpuBalls, GpuError> {
+        GpuBalls::on(
+            compute.device.clone(),
+            compute.queue.clone(),
+            compute.adapter.clone(),
+            world,
+        )
+    }
+
+    fn on(
+        device: wgpu::Device,
+        queue: wgpu::Queue,
+        adapter: String,
+        world: &mut World,
+    ) -> Result<GpuBalls, GpuError> {
+        let config = world.config().clone();
+        if config.balls.pour.rate > 0.0 && config.balls.count > 0 {
+            return Err(GpuError::Unsupported(
+                "it does not pour balls from a spout (balls.pour.rate is above 0)".into(),
+            ));
+        }
+        let balls = world.take_balls();
+        let room = *world.room();
+        let largest = (0..balls.len())
+            .map(|i| balls.radii()[i])
+            .fold(config.balls.largest_radius(), f64::max);
+        let cell = CELL_RADII * largest;
+        let size = room.max - room.min;
+        let dims = (size / cell).ceil().max(DVec3::ONE);
+        let cells = (dims.x * dims.y * dims.z) as u64;
+        let capacity = balls.len() as u64 + THROW_ROOM;
+        let tumblers = world.tumblers().len();
+        let spheres = world.tumbler_shape().spheres.len();
+        let sizes = Sizes {
+            balls: capacity,
+            cells,
+            bodies: (tumblers * spheres + 1) as u64,
+            tumblers: tumblers as u64,
+            colors: (7 + tumblers + config.balls.placements.len()) as u64,
+        };
+        let limits = device.limits();
+        let limit = |what, need: u64, have: u64| {
+            if need > have {
+                Err(GpuError::Limit {
+                    adapter: adapter.clone(),
+                    what,
+                    need,
+                    have,
+                })
+            } else {
+                Ok(())
+            }
+        };
+        limit(
+            "storage buffers per shader stage",
+            u64::from(STORAGE_BUFFERS),
+            u64::from(limits.max_storage_buffers_per_shader_stage),
+        )?;
+        limit(
+            "a storage buffer binding size (bytes)",
+            sizes.largest_buffer(),
+            limits.max_storage_buffer_binding_size,
+        )?;
+        limit(
+            "a buffer size (bytes)",
+            sizes.largest_buffer(),
+            limits.max_buffer_size,
+        )?;
+        limit("grid cells", cells + 1, MAX_ITEMS.min(u64::from(u32::MAX)))?;
+        limit("balls", capacity, MAX_ITEMS)?;
+
+        let layout = Buffers::layout(&device);
+        let buffers = Buffers::new(&device, &sizes);
+        let bind_group = buffers.bind_group(&device, &layout);
+        let passes = Passes::new(&device, &layout);
+        let scan = Scan::new(&device, &buffers.cell_start, cells + 1);
+
+        let palette_layout = PaletteLayout {
+            tumblers: 7,
+            placed: 7 + tumblers as u32,
+        };
+        let mut palette = vec![[0.0; 4]; sizes.colors as usize];
+        let mut put = |tint: Tint| {
+            let [r, g, b] = world.tint_color(tint);
+            palette[palette_layout.index(tint) as usize] = [r, g, b, 1.0];
+        };
+        put(Tint::White);
+        for s in rolypoly_physics::Surface::ALL {
+            put(Tint::Surface(s));
+        }
+        for t in 0..tumblers {
+            put(Tint::Tumbler(t));
+        }
+        for k in 0..config.balls.placements.len() {
+            put(Tint::Placed(k));
+        }
+        queue.write_buffer(&buffers.palette, 0, bytemuck::cast_slice(&palette));
+
+        let solver = &config.solver;
+        let params = Params {
+            count: 0,
+            cells: cells as u32,
+            bodies: 0,
+            consumes: u32::from(config.fireball.consumes_balls),
+            dims: [dims.x as u32, dims.y as u32, dims.z as u32, 0],
+            room_min: [
+                room.min.x as f32,
+                room.min.y as f32,
+                room.min.z as f32,
+                solver.dt as f32,
+            ],
+            room_max: [
+                room.max.x as f32,
+                room.max.y as f32,
+                room.max.z as f32,
+                config.gravity as f32,
+            ],
+            grid: [
+                cell as f32,
+                (MARGIN_RADII * largest) as f32,
+                solver.bounce_threshold as f32,
+                solver.event_threshold as f32,
+            ],
+            material: [
+                config.balls.restitution as f32,
+                config.balls.friction as f32,
+                config.room.restitution as f32,
+                config.room.friction as f32,
+            ],
+            more: [
+                config.room.rolling_resistance as f32,
+                config.tumblers.restitution as f32,
+                0.0,
+                RELAXATION,
+            ],
+            tumblers: tumblers as u32,
+            surface_colors: PaletteLayout::SURFACES,
+            step: 0,
+            _pad: 0,
+        };
+        let report = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("step report"),
+            size: report_size(tumblers),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut engine = GpuBalls {
+            device,
+            queue,
+            adapter,
+            buffers,
+            bind_group,
+            passes,
+            scan,
+            params,
+            capacity,
+            cells,
+            tumblers,
+            palette,
+            palette_layout,
+            solve_sweeps: SWEEPS_PER_ITERATION * solver.iterations.max(1) as u32,
+            report,
+            catches: Vec::new(),
+            steps: 0,
+        };
+        engine.upload(&balls, 0);
+        engine.params.count = balls.len() as u32;
+        Ok(engine)
+    }
+
+    /// The adapter it runs on, "name (backend)".
+    pub fn adapter(&self) -> &str {
+        &self.adapter
+    }
+
+    /// Balls in play or caught, thrown ones included.
+    pub fn len(&self) -> usize {
+        self.params.count as usize
+    }
+
+    /// Whether there are no balls.
+    pub fn is_empty(&self) -> bool {
+        self.params.count == 0
+    }
+
+    /// Steps taken since it was built.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// What the renderer draws: each ball's centre and radius, then colour
+    /// and a pad (32 bytes a ball, radius 0 for a caught one), written on
+    /// the GPU by every step; the first [`GpuBalls::len`] are in use.
+    pub fn instances(&self) -> &wgpu::Buffer {
+        &self.buffers.instances
+    }
+
+    /// Writes `balls` into the buffers from ball number `first` on.
+    fn upload(&mut self, balls: &Balls, first: u64) {
+        let n = balls.len();
+        let mut pos = Vec::with_capacity(n);
+        let mut vel = Vec::with_capacity(n);
+        let mut spin = Vec::with_capacity(n);
+        let mut state = Vec::with_capacity(n);
+        for i in 0..n {
+            let p = balls.positions()[i].as_vec3();
+            let v = balls.velocities()[i].as_vec3();
+            let w = balls.spins()[i].as_vec3();
+            pos.push([p.x, p.y, p.z, balls.radii()[i] as f32]);
+            vel.push([v.x, v.y, v.z, (1.0 / balls.masses()[i]) as f32]);
+            spin.push([w.x, w.y, w.z, 0.0]);
+            let color = self.palette_layout.index(balls.tints()[i]);
+            state.push(u32::from(balls.alive()[i]) | (color << 16));
+        }
+        let q = &self.queue;
+        q.write_buffer(&self.buffers.pos, 16 * first, bytemuck::cast_slice(&pos));
+        q.write_buffer(&self.buffers.vel, 16 * first, bytemuck::cast_slice(&vel));
+        q.write_buffer(&self.buffers.spin, 16 * first, bytemuck::cast_slice(&spin));
+        q.write_buffer(&self.buffers.state, 4 * first, bytemuck::cast_slice(&state));
+    }
+
+    /// Puts the balls back as the scene starts them (I): `world` draws them
+    /// afresh (see [`World::reset_balls`]) and they are taken from it again.
+    pub fn restart(&mut self, world: &mut World) -> Result<(), GpuError> {
+        world
+            .reset_balls()
+            .map_err(|e| GpuError::Build(e.to_string()))?;
+        let balls = world.take_balls();
+        self.upload(&balls, 0);
+        self.params.count = balls.len() as u32;
+        self.write_instances();
+        Ok(())
+    }
+
+    /// Throws a new ball from `position` at `velocity` (B), as
+    /// [`World::throw_ball`] makes one; its number, or an error once the
+    /// room for thrown balls is used up.
+    pub fn throw_ball(
+        &mut self,
+        world: &mut World,
+        position: DVec3,
+        velocity: DVec3,
+    ) -> Result<usize, GpuError> {
+        let number = u64::from(self.params.count);
+        if number >= self.capacity {
+            return Err(GpuError::Unsupported(format!(
+                "no room for more thrown balls: {THROW_ROOM} can be thrown before the balls are restarted (I)"
+            )));
+        }
+        world.throw_ball(position, velocity);
+        let thrown = world.take_balls();
+        self.upload(&thrown, number);
+        self.params.count += 1;
+        Ok(number as usize)
+    }
+
+    /// The bodies the balls meet this step: each tumbler's spheres, then the
+    /// fireball if it flies.
+    fn bodies(&self, world: &World) -> Vec<Body> {
+        let shape = world.tumbler_shape();
+        let mut bodies = Vec::with_capacity(self.tumblers * shape.spheres.len() + 1);
+        let f32x4 = |v: DVec3, w: f32| [v.x as f32, v.y as f32, v.z as f32, w];
+        for (t, tumbler) in world.tumblers().iter().enumerate() {
+            let origin = tumbler.bottom_center();
+            for (s, sphere) in shape.spheres.iter().enumerate() {
+                bodies.push(Body {
+                    sphere: f32x4(tumbler.sphere_center(shape, s), sphere.radius as f32),
+                    origin: f32x4(origin, 0.0),
+                    velocity: f32x4(tumbler.point_velocity(origin), 0.0),
+                    spin: f32x4(tumbler.angular_velocity(), 0.0),
+                    info: [
+                        t as u32,
+                        s as u32,
+                        self.palette_layout.index(Tint::Tumbler(t)),
+                        0,
+                    ],
+                });
+            }
+        }
+        if let Some(f) = world.fireball() {
+            bodies.push(Body {
+                sphere: f32x4(f.position, f.radius as f32),
+                origin: f32x4(f.position, 0.0),
+                velocity: f32x4(f.velocity, 0.0),
+                spin: [0.0; 4],
+                info: [FIREBALL, 0, 0, 0],
+            });
+        }
+        bodies
+    }
+
+    /// One step of the balls, against the tumblers and fireball where
+    /// `world` has them now. The tumblers' pushes from the balls come back
+    /// at the end of the step and are given to `world`'s tumblers, which
+    /// feel them from their next step on; the balls the fireball caught are
+    /// reported (see [`GpuBalls::take_catches`]).
+    pub fn step(&mut self, world: &mut World) -> Result<(), GpuError> {
+        let bodies = self.bodies(world);
+        self.params.bodies = bodies.len() as u32;
+        self.params.step = self.steps as u32;
+        let catching = world.fireball().is_some() && self.params.consumes != 0;
+        let q = &self.queue;
+        if !bodies.is_empty() {
+            q.write_buffer(&self.buffers.bodies, 0, bytemuck::cast_slice(&bodies));
+        }
+        q.write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&self.params));
+        if catching {
+            q.write_buffer(&self.buffers.event_count, 0, &[0; 4]);
+        }
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        self.record_step(&mut encoder);
+        let report = self.tumblers > 0 || catching;
+        if report {
+            let push = 32 * self.tumblers as u64;
+            encoder.copy_buffer_to_buffer(&self.buffers.tumbler_push, 0, &self.report, 0, push);
+            encoder.copy_buffer_to_buffer(&self.buffers.event_count, 0, &self.report, push, 16);
+            encoder.copy_buffer_to_buffer(
+                &self.buffers.events,
+                0,
+                &self.report,
+                push + 16,
+                EVENT_CAPACITY * std::mem::size_of::<Catch>() as u64,
+            );
+        }
+        self.queue.submit([encoder.finish()]);
+        self.steps += 1;
+        if report {
+            self.take_report(world)?;
+        }
+        Ok(())
+    }
+
+    /// Records one step's passes into `encoder`: grid, contacts, solver
+    /// sweeps, the tumblers' pushes, flight, overlap sweeps, instances.
+    fn record_step(&self, encoder: &mut wgpu::CommandEncoder) {
+        let balls = u64::from(self.params.count);
+        let dispatch =
+            |pass: &mut wgpu::ComputePass, pipeline: &wgpu::ComputePipeline, items: u64| {
+                pass.set_pipeline(pipeline);
+                let (x, y) = groups(items);
+                pass.dispatch_workgroups(x, y, 1);
+            };
+        let p = &self.passes;
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("count balls by cell"),
+                timestamp_writes: None,
+            });
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            dispatch(&mut pass, &p.clear_cells, self.cells + 1);
+            dispatch(&mut pass, &p.count_cells, balls);
+        }
+        encoder.copy_buffer_to_buffer(
+            &self.buffers.cell_fill,
+            0,
+            &self.buffers.cell_start,
+            0,
+            4 * (self.cells + 1),
+        );
+        self.scan.record(encoder);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("ball step"),
+            timestamp_writes: None,
+        });
+        pass.set_bind_group(0, &self.bind_group, &[]);
+        dispatch(&mut pass, &p.clear_cells, self.cells + 1);
+        dispatch(&mut pass, &p.place_in_cells, balls);
+        dispatch(&mut pass, &p.sort_cells, self.cells);
+        dispatch(&mut pass, &p.find_contacts, balls);
+        dispatch(&mut pass, &p.warm_start, balls);
+        for _ in 0..self.solve_sweeps {
+            dispatch(&mut pass, &p.solve_contacts, balls);
+            dispatch(&mut pass, &p.apply_deltas, balls);
+        }
+        if self.tumblers > 0 {
+            pass.set_pipeline(&p.sum_tumbler_push);
+            pass.dispatch_workgroups(self.tumblers as u32, 1, 1);
+        }
+        dispatch(&mut pass, &p.fly, balls);
+        for _ in 0..SHIFT_SWEEPS {
+            dispatch(&mut pass, &p.find_overlaps, balls);
+            dispatch(&mut pass, &p.apply_shifts, balls);
+        }
+        dispatch(&mut pass, &p.write_instances, balls);
+    }
+
+    /// Writes the instances from the state as it is, without a step.
+    fn write_instances(&mut self) {
+        self.queue
+            .write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&self.params));
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            pass.set_pipeline(&self.passes.write_instances);
+            let (x, y) = groups(u64::from(self.params.count));
+            pass.dispatch_workgroups(x, y, 1);
+        }
+        self.queue.submit([encoder.finish()]);
+    }
+
+    /// Reads the step's report: gives each tumbler its push, keeps the catches.
+    fn take_report(&mut self, world: &mut World) -> Result<(), GpuError> {
+        let bytes = read_buffer(
+            &self.device,
+            &self.report,
+            report_size(self.tumblers) as usize,
+        )?;
+        let push: &[[f32; 4]] = bytemuck::cast_slice(&bytes[..32 * self.tumblers]);
+        for t in 0..self.tumblers {
+            let [ix, iy, iz, _] = push[2 * t];
+            let [mx, my, mz, _] = push[2 * t + 1];
+            let impulse = DVec3::new(ix.into(), iy.into(), iz.into());
+            let moment = DVec3::new(mx.into(), my.into(), mz.into());
+            world.push_tumbler(t, impulse, moment);
+        }
+        let at = 32 * self.tumblers;
+        let count = u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+        let caught: &[Catch] = bytemuck::cast_slice(&bytes[at + 16..]);
+        let first = self.catches.len();
+        for c in caught
+            .iter()
+            .take((count as usize).min(EVENT_CAPACITY as usize))
+        {
+            let [px, py, pz, ball] = c.point;
+            let [nx, ny, nz, speed] = c.normal;
+            self.catches.push(Event {
+                kind: EventKind::FireballBall {
+                    ball: ball.to_bits() as usize,
+                },
+                point: DVec3::new(px.into(), py.into(), pz.into()),
+                normal: DVec3::new(nx.into(), ny.into(), nz.into()),
+                speed: speed.into(),
+            });
+        }
+        // The atomics set the order they were written in; the ball's number
+        // sets the order they are reported in.
+        self.catches[first..].sort_by_key(|e| match e.kind {
+            EventKind::FireballBall { ball } => ball,
+            _ => usize::MAX,
+        });
+        Ok(())
+    }
+
+    /// The balls the fireball caught since the last call, as events.
+    pub fn take_catches(&mut self, into: &mut Vec<Event>) {
+        into.append(&mut self.catches);
+    }
+
+    /// Reads every ball back from the GPU (for traces, tests and the bench;
+    /// the window never needs to).
+    pub fn read(&self) -> Result<BallState, GpuError> {
+        let n = u64::from(self.params.count);
+        let copy = |buffer: &wgpu::Buffer, size: u64| -> Result<Vec<u8>, GpuError> {
+            let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("read back"),
+                size: size.max(16),
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size.max(16).min(buffer.size()));
+            self.queue.submit([encoder.finish()]);
+            read_buffer(&self.device, &staging, size as usize)
+        };
+        let pos = copy(&self.buffers.pos, 16 * n)?;
+        let vel = copy(&self.buffers.vel, 16 * n)?;
+        let spin = copy(&self.buffers.spin, 16 * n)?;
+        let state = copy(&self.buffers.state, 4 * n)?;
+        let pos: &[[f32; 4]] = bytemuck::cast_slice(&pos);
+        let vel: &[[f32; 4]] = bytemuck::cast_slice(&vel);
+        let spin: &[[f32; 4]] = bytemuck::cast_slice(&spin);
+        let state: &[u32] = bytemuck::cast_slice(&state);
+        let xyz = |v: &[f32; 4]| Vec3::new(v[0], v[1], v[2]);
+        Ok(BallState {
+            positions: pos.iter().map(xyz).collect(),
+            velocities: vel.iter().map(xyz).collect(),
+            spins: spin.iter().map(xyz).collect(),
+            radii: pos.iter().map(|p| p[3]).collect(),
+            inverse_masses: vel.iter().map(|v| v[3]).collect(),
+            alive: state.iter().map(|s| s & 1 != 0).collect(),
+            colors: state
+                .iter()
+                .map(|s| {
+                    let [r, g, b, _] = self.palette[(s >> 16) as usize];
+                    [r, g, b]
+                })
+                .collect(),
+        })
+    }
+}
+
+/// Bytes of the step report: two vectors a tumbler, the catch count
+/// (padded to 16), the catches.
+fn report_size(tumblers: usize) -> u64 {
+    32 * tumblers as u64 + 16 + EVENT_CAPACITY * std::mem::size_of::<Catch>() as u64
+}

@@ -1,0 +1,108 @@
+//! The data the ball passes share with the CPU, laid out as the WGSL in
+//! `shaders/common.wgsl` declares it, and how work is split into
+//! workgroups.
+
+use bytemuck::{Pod, Zeroable};
+
+/// Threads in a workgroup, in every pass (`WORKGROUP` in the WGSL).
+pub const WORKGROUP: u32 = 256;
+/// Contacts a ball keeps with other balls in one step (`SLOTS`).
+pub const SLOTS: u64 = 12;
+/// The most workgroups a dispatch has along one dimension; wider ones
+/// spill into y (`ball_index` in the WGSL).
+pub const MAX_GROUPS: u32 = 65_535;
+/// Items one dispatch can cover.
+pub const MAX_ITEMS: u64 = MAX_GROUPS as u64 * MAX_GROUPS as u64 * WORKGROUP as u64;
+/// The body number that means the fireball (`FIREBALL`).
+pub const FIREBALL: u32 = 0xffff;
+/// Catches reported in one step at most (`events`' length).
+pub const EVENT_CAPACITY: u64 = 1024;
+
+/// `Params` in the WGSL: the step's constants.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct Params {
+    pub count: u32,
+    pub cells: u32,
+    pub bodies: u32,
+    pub consumes: u32,
+    pub dims: [u32; 4],
+    /// Inside corner; w: the step.
+    pub room_min: [f32; 4],
+    /// Outside corner; w: gravity.
+    pub room_max: [f32; 4],
+    /// Cell size, margin, bounce threshold, event threshold.
+    pub grid: [f32; 4],
+    /// Ball restitution and friction, wall restitution and friction.
+    pub material: [f32; 4],
+    /// Wall rolling resistance, tumbler restitution, unused, relaxation.
+    pub more: [f32; 4],
+    pub tumblers: u32,
+    pub surface_colors: u32,
+    pub step: u32,
+    pub _pad: u32,
+}
+
+/// `Body` in the WGSL: one sphere of a tumbler, or the fireball.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct Body {
+    pub sphere: [f32; 4],
+    pub origin: [f32; 4],
+    pub velocity: [f32; 4],
+    pub spin: [f32; 4],
+    /// Tumbler number (or [`FIREBALL`]), sphere number, palette colour.
+    pub info: [u32; 4],
+}
+
+/// `Event` in the WGSL: a ball the fireball caught.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct Catch {
+    /// Where; w: the ball's number, as bits.
+    pub point: [f32; 4],
+    /// From the ball towards the fireball; w: how fast they met.
+    pub normal: [f32; 4],
+}
+
+/// Workgroups for `items` items, spilled into y past [`MAX_GROUPS`].
+pub fn groups(items: u64) -> (u32, u32) {
+    let groups = items.div_ceil(u64::from(WORKGROUP)).max(1);
+    if groups <= u64::from(MAX_GROUPS) {
+        (groups as u32, 1)
+    } else {
+        (MAX_GROUPS, groups.div_ceil(u64::from(MAX_GROUPS)) as u32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dispatches_cover_every_item_and_spill_into_y() {
+        for items in [
+            0,
+            1,
+            255,
+            256,
+            257,
+            65_535 * 256,
+            65_535 * 256 + 1,
+            20_000_000,
+        ] {
+            let (x, y) = groups(items);
+            assert!(x <= MAX_GROUPS && y <= MAX_GROUPS);
+            assert!(u64::from(x) * u64::from(y) * 256 >= items, "{items}");
+        }
+        assert_eq!(groups(257), (2, 1));
+        assert_eq!(groups(65_535 * 256 + 1), (65_535, 2));
+    }
+
+    #[test]
+    fn the_structs_are_as_large_as_the_shader_reads_them() {
+        assert_eq!(std::mem::size_of::<Params>(), 144);
+        assert_eq!(std::mem::size_of::<Body>(), 80);
+        assert_eq!(std::mem::size_of::<Catch>(), 32);
+    }
+}

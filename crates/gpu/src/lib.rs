@@ -1,0 +1,38 @@
+//! The rolypoly balls on the GPU: WGSL compute shaders through wgpu, on any
+//! adapter with compute shaders (Vulkan, Metal, DX12; lavapipe in tests).
+//!
+//! A step, in the order it runs (each pass is a WGSL file in `shaders/`
+//! beside the Rust that drives it):
+//! 1. **grid**: each ball's cell is counted, the counts are scanned
+//!    (`scan`), the balls placed, and each cell's list sorted by ball
+//!    number, so that every later pass walks the same lists in the same
+//!    order whatever order the atomics landed in;
+//! 2. **contacts**: each ball keeps its nearest balls within reach, the
+//!    nearest tumbler sphere, the nearest walls; the fireball takes the
+//!    balls it reaches, if the scene says so;
+//! 3. **solve**: Jacobi sweeps of impulses, normal and friction, each ball
+//!    gathering its own change (no float atomics: a pair's impulse is
+//!    worked out alike from both sides);
+//! 4. **report**: the tumblers' pushes, summed in a fixed order;
+//! 5. **flight**: balls in contact move at their solved velocity, lone
+//!    balls along their exact parabola, bouncing exactly off the walls;
+//! 6. **project**: overlaps pushed out by position;
+//! 7. the renderer's ball instances written, on the GPU.
+//!
+//! The same scene, seed and inputs give the same bits on rerun on the same
+//! adapter and driver.
+
+#![warn(missing_docs)]
+
+mod bindings;
+mod device;
+mod engine;
+mod error;
+mod layout;
+mod passes;
+mod readback;
+mod scan;
+
+pub use device::{Compute, check_compute, describe, limits};
+pub use engine::{BallState, GpuBalls, THROW_ROOM};
+pub use error::GpuError;

@@ -1,0 +1,75 @@
+//! The ball passes' pipelines: each WGSL file after `common.wgsl`, one
+//! pipeline for each of its entry points, all on the one layout of
+//! `bindings.rs`.
+
+/// The shader files, in the order a step runs them.
+const SOURCES: [&str; 6] = [
+    include_str!("shaders/grid.wgsl"),
+    include_str!("shaders/contacts.wgsl"),
+    include_str!("shaders/solve.wgsl"),
+    include_str!("shaders/flight.wgsl"),
+    include_str!("shaders/project.wgsl"),
+    include_str!("shaders/report.wgsl"),
+];
+
+/// One pipeline for each entry point.
+pub struct Passes {
+    pub clear_cells: wgpu::ComputePipeline,
+    pub count_cells: wgpu::ComputePipeline,
+    pub place_in_cells: wgpu::ComputePipeline,
+    pub sort_cells: wgpu::ComputePipeline,
+    pub find_contacts: wgpu::ComputePipeline,
+    pub warm_start: wgpu::ComputePipeline,
+    pub solve_contacts: wgpu::ComputePipeline,
+    pub apply_deltas: wgpu::ComputePipeline,
+    pub fly: wgpu::ComputePipeline,
+    pub find_overlaps: wgpu::ComputePipeline,
+    pub apply_shifts: wgpu::ComputePipeline,
+    pub sum_tumbler_push: wgpu::ComputePipeline,
+    pub write_instances: wgpu::ComputePipeline,
+}
+
+impl Passes {
+    pub fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> Passes {
+        let common = include_str!("shaders/common.wgsl");
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("balls"),
+            bind_group_layouts: &[Some(layout)],
+            immediate_size: 0,
+        });
+        let modules: Vec<wgpu::ShaderModule> = SOURCES
+            .iter()
+            .map(|source| {
+                device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("balls"),
+                    source: wgpu::ShaderSource::Wgsl(format!("{common}\n{source}").into()),
+                })
+            })
+            .collect();
+        let pipeline = |file: usize, entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module: &modules[file],
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        Passes {
+            clear_cells: pipeline(0, "clear_cells"),
+            count_cells: pipeline(0, "count_cells"),
+            place_in_cells: pipeline(0, "place_in_cells"),
+            sort_cells: pipeline(0, "sort_cells"),
+            find_contacts: pipeline(1, "find_contacts"),
+            warm_start: pipeline(1, "warm_start"),
+            solve_contacts: pipeline(2, "solve_contacts"),
+            apply_deltas: pipeline(2, "apply_deltas"),
+            fly: pipeline(3, "fly"),
+            find_overlaps: pipeline(4, "find_overlaps"),
+            apply_shifts: pipeline(4, "apply_shifts"),
+            sum_tumbler_push: pipeline(5, "sum_tumbler_push"),
+            write_instances: pipeline(5, "write_instances"),
+        }
+    }
+}

@@ -1,0 +1,153 @@
+//! An exclusive prefix sum of `u32` on the GPU (`shaders/scan.wgsl`): each
+//! block of 256 is scanned in place, the blocks' totals are scanned a level
+//! up, and added back. Deterministic: integers, no atomics.
+
+use crate::layout::{WORKGROUP, groups};
+use wgpu::util::DeviceExt;
+
+/// The scan's pipelines and, for one buffer of a given length, its levels.
+pub struct Scan {
+    scan_blocks: wgpu::ComputePipeline,
+    add_block_offsets: wgpu::ComputePipeline,
+    /// Level by level, the values scanned and the bind group that binds
+    /// them with the level above's buffer of block totals.
+    levels: Vec<Level>,
+    /// Keeps the totals' buffers alive.
+    _totals: Vec<wgpu::Buffer>,
+}
+
+struct Level {
+    len: u64,
+    bind_group: wgpu::BindGroup,
+}
+
+impl Scan {
+    /// A scan of the first `len` values of `values`.
+    pub fn new(device: &wgpu::Device, values: &wgpu::Buffer, len: u64) -> Scan {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("scan"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("shaders/scan.wgsl").into()),
+        });
+        let storage = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: false },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("scan"),
+            entries: &[
+                // var<uniform> scan: ScanParams
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                // var<storage, read_write> values: array<u32>
+                storage(1),
+                // var<storage, read_write> block_totals: array<u32>
+                storage(2),
+            ],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("scan"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let mut lens = vec![len.max(1)];
+        while *lens.last().unwrap_or(&1) > 1 {
+            let above = lens.last().unwrap_or(&1).div_ceil(u64::from(WORKGROUP));
+            lens.push(above);
+        }
+        let totals: Vec<wgpu::Buffer> = lens[1..]
+            .iter()
+            .map(|&n| {
+                device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("scan block totals"),
+                    size: 4 * n.max(1),
+                    usage: wgpu::BufferUsages::STORAGE,
+                    mapped_at_creation: false,
+                })
+            })
+            .collect();
+        let levels = (0..lens.len() - 1)
+            .map(|k| {
+                let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("scan length"),
+                    contents: bytemuck::cast_slice(&[lens[k] as u32, 0, 0, 0]),
+                    usage: wgpu::BufferUsages::UNIFORM,
+                });
+                let values = if k == 0 { values } else { &totals[k - 1] };
+                let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("scan level"),
+                    layout: &layout,
+                    entries: &[
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: uniform.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: values.as_entire_binding(),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: totals[k].as_entire_binding(),
+                        },
+                    ],
+                });
+                Level {
+                    len: lens[k],
+                    bind_group,
+                }
+            })
+            .collect();
+        Scan {
+            scan_blocks: pipeline("scan_blocks"),
+            add_block_offsets: pipeline("add_block_offsets"),
+            levels,
+            _totals: totals,
+        }
+    }
+
+    /// Records the scan into `encoder`: down the levels scanning blocks,
+    /// then back up adding each block's offset. A level of one block is
+    /// scanned whole, and its total is not added back.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("scan"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.scan_blocks);
+        for level in &self.levels {
+            pass.set_bind_group(0, &level.bind_group, &[]);
+            let (x, y) = groups(level.len);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+        pass.set_pipeline(&self.add_block_offsets);
+        for level in self.levels.iter().rev().skip(1) {
+            pass.set_bind_group(0, &level.bind_group, &[]);
+            let (x, y) = groups(level.len);
+            pass.dispatch_workgroups(x, y, 1);
+        }
+    }
+}

@@ -1,0 +1,203 @@
+// What every ball pass shares: the step's constants and the buffers, all
+// in one bind group (see `bindings.rs`, which lists them in this order).
+
+const WORKGROUP: u32 = 256u;
+// Contacts a ball keeps with other balls in one step: its nearest.
+const SLOTS: u32 = 12u;
+const NONE: u32 = 0xffffffffu;
+// A ball's state word: bit 0 alive; bit 1 in the solver (it has a ball or
+// a body within reach); bits 4-7 how many balls it touches; bits 8-10 which
+// of its nearest walls (x, y, z) it touches; bits 16-31 its colour's place
+// in the palette.
+const ALIVE: u32 = 1u;
+const SOLVED: u32 = 2u;
+const SLOT_SHIFT: u32 = 4u;
+const WALL_SHIFT: u32 = 8u;
+const COLOR_SHIFT: u32 = 16u;
+// Bodies a ball can meet besides balls and walls: tumblers' spheres and the
+// fireball. `Body.info.x` is the tumbler's number, or this for the fireball.
+const FIREBALL: u32 = 0xffffu;
+
+struct Params {
+    // Balls in use; cells; bodies; 1 when the fireball takes the balls it meets.
+    count: u32,
+    cells: u32,
+    bodies: u32,
+    consumes: u32,
+    // The grid's cells along x, y, z, and the palette's first tumbler colour.
+    dims: vec4<u32>,
+    // The room's inside corner; w: the step (s).
+    room_min: vec4<f32>,
+    // The room's outside corner; w: gravity (m/s², along -y).
+    room_max: vec4<f32>,
+    // x: cell size; y: speculative margin (m); z: bounce threshold, w: event threshold (m/s).
+    grid: vec4<f32>,
+    // Balls: restitution, friction; walls: restitution, friction.
+    material: vec4<f32>,
+    // x: walls' rolling resistance; y: tumblers' restitution; z: unused; w: Jacobi relaxation.
+    more: vec4<f32>,
+    // Tumblers whose pushes are summed; the palette's first surface colour.
+    tumblers: u32,
+    surface_colors: u32,
+    step: u32,
+    _pad: u32,
+}
+
+struct Body {
+    // Centre and radius of the sphere.
+    sphere: vec4<f32>,
+    // The point its motion is given about, and its velocity.
+    origin: vec4<f32>,
+    velocity: vec4<f32>,
+    // Angular velocity (rad/s).
+    spin: vec4<f32>,
+    // x: tumbler number (or FIREBALL), y: sphere number, z: palette colour.
+    info: vec4<u32>,
+}
+
+struct Event {
+    // Where, and the ball's number as bits.
+    point: vec4<f32>,
+    // Along which normal, and how fast.
+    normal: vec4<f32>,
+}
+
+@group(0) @binding(0) var<uniform> params: Params;
+// Centre, radius.
+@group(0) @binding(1) var<storage, read_write> pos: array<vec4<f32>>;
+// Velocity, inverse mass.
+@group(0) @binding(2) var<storage, read_write> vel: array<vec4<f32>>;
+// Angular velocity.
+@group(0) @binding(3) var<storage, read_write> spin: array<vec4<f32>>;
+// The velocity at the start of the step.
+@group(0) @binding(4) var<storage, read_write> vel_start: array<vec4<f32>>;
+// A Jacobi sweep's change of velocity (or of position), then of spin.
+@group(0) @binding(5) var<storage, read_write> delta: array<vec4<f32>>;
+@group(0) @binding(6) var<storage, read_write> delta_spin: array<vec4<f32>>;
+// See ALIVE, SOLVED.
+@group(0) @binding(7) var<storage, read_write> state: array<u32>;
+// The grid: each ball's cell, each cell's first place in `cell_balls`
+// (one past the end: the count), the balls by cell.
+@group(0) @binding(8) var<storage, read_write> cell_of: array<u32>;
+@group(0) @binding(9) var<storage, read_write> cell_start: array<u32>;
+@group(0) @binding(10) var<storage, read_write> cell_fill: array<atomic<u32>>;
+@group(0) @binding(11) var<storage, read_write> cell_balls: array<u32>;
+// Each ball's contacts with other balls: the other's number, and the
+// impulse so far (friction xyz, normal w). SLOTS a ball.
+@group(0) @binding(12) var<storage, read_write> slot_other: array<u32>;
+@group(0) @binding(13) var<storage, read_write> slot_impulse: array<vec4<f32>>;
+// Each ball's contacts with the room's nearest wall on each axis.
+@group(0) @binding(14) var<storage, read_write> wall_impulse: array<vec4<f32>>;
+// Each ball's contact with a body (or NONE), and its impulse.
+@group(0) @binding(15) var<storage, read_write> body_of: array<u32>;
+@group(0) @binding(16) var<storage, read_write> body_impulse: array<vec4<f32>>;
+@group(0) @binding(17) var<storage, read> bodies: array<Body>;
+@group(0) @binding(18) var<storage, read> palette: array<vec4<f32>>;
+// What the renderer draws: centre and radius, colour (see `BallInstance`).
+@group(0) @binding(19) var<storage, read_write> instances: array<vec4<f32>>;
+// Each tumbler's push from the balls: impulse, then moment about its origin.
+@group(0) @binding(20) var<storage, read_write> tumbler_push: array<vec4<f32>>;
+@group(0) @binding(21) var<storage, read_write> events: array<Event>;
+@group(0) @binding(22) var<storage, read_write> event_count: atomic<u32>;
+
+fn ball_index(id: vec3<u32>) -> u32 {
+    // Dispatches wider than 65 535 workgroups spill into y.
+    return id.x + id.y * 65535u * WORKGROUP;
+}
+
+fn alive(i: u32) -> bool {
+    return (state[i] & ALIVE) != 0u;
+}
+
+fn dt() -> f32 {
+    return params.room_min.w;
+}
+
+fn gravity() -> vec3<f32> {
+    return vec3<f32>(0.0, -params.room_max.w, 0.0);
+}
+
+fn cell_coords(p: vec3<f32>) -> vec3<i32> {
+    let c = floor((p - params.room_min.xyz) / params.grid.x);
+    return clamp(vec3<i32>(c), vec3<i32>(0), vec3<i32>(params.dims.xyz) - 1);
+}
+
+fn cell_id(c: vec3<i32>) -> u32 {
+    let d = params.dims;
+    return u32(c.x) + d.x * (u32(c.y) + d.y * u32(c.z));
+}
+
+// A solid sphere's inverse moment of inertia from its inverse mass.
+fn inv_inertia(inv_mass: f32, r: f32) -> f32 {
+    return 2.5 * inv_mass / (r * r);
+}
+
+// The separating speed a contact must end the step with, from how fast it
+// closed at the step's start: a bounce if it closes fast enough to touch
+// within the step, else no more closing than the gap allows.
+fn target_speed(approach: f32, gap: f32, restitution: f32) -> f32 {
+    if approach > params.grid.z && gap < approach * dt() {
+        return restitution * approach;
+    }
+    return -max(gap, 0.0) / dt();
+}
+
+// Friction so far plus what stops the slip, within the cone of the normal impulse.
+fn clamp_friction(friction: vec3<f32>, limit: f32) -> vec3<f32> {
+    let len = length(friction);
+    if len > limit && len > 0.0 {
+        return friction * (limit / len);
+    }
+    return friction;
+}
+
+// The room's nearest wall on `axis`: its inward normal and the gap to it.
+fn nearest_wall(p: vec3<f32>, r: f32, axis: u32) -> vec4<f32> {
+    let low = p[axis] - params.room_min[axis];
+    let high = params.room_max[axis] - p[axis];
+    var n = vec3<f32>(0.0);
+    if low <= high {
+        n[axis] = 1.0;
+        return vec4<f32>(n, low - r);
+    }
+    n[axis] = -1.0;
+    return vec4<f32>(n, high - r);
+}
+
+// The surface (Floor, Ceiling, Left, Right, Back, Front) a wall normal names.
+fn surface_of(n: vec3<f32>) -> u32 {
+    if n.y > 0.5 { return 0u; }
+    if n.y < -0.5 { return 1u; }
+    if n.x > 0.5 { return 2u; }
+    if n.x < -0.5 { return 3u; }
+    if n.z > 0.5 { return 4u; }
+    return 5u;
+}
+
+fn set_color(i: u32, palette_index: u32) {
+    state[i] = (state[i] & 0xffffu) | (palette_index << COLOR_SHIFT);
+}
+
+fn slot_count(s: u32) -> u32 {
+    return (s >> SLOT_SHIFT) & 15u;
+}
+
+fn touches_wall(s: u32, axis: u32) -> bool {
+    return ((s >> (WALL_SHIFT + axis)) & 1u) != 0u;
+}
+
+// How many contacts a ball's Jacobi sweep sums: its share of each is
+// this many times smaller, so that together they do not overshoot.
+fn contact_count(i: u32) -> u32 {
+    let s = state[i];
+    var n = slot_count(s) + countOneBits((s >> WALL_SHIFT) & 7u);
+    if body_of[i] != NONE {
+        n += 1u;
+    }
+    return max(n, 1u);
+}
+
+// The point of body `b`'s sphere nearest `p`, and that point's velocity.
+fn body_point_velocity(b: Body, point: vec3<f32>) -> vec3<f32> {
+    return b.velocity.xyz + cross(b.spin.xyz, point - b.origin.xyz);
+}

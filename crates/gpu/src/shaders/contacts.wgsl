@@ -1,0 +1,205 @@
+// Each ball finds what it may touch within the step: its nearest balls in
+// the 27 cells around it (in cell order, each cell in ball order, so the
+// same every run), the nearest body, the nearest walls. The fireball, when
+// it takes balls, takes those it reaches here. A contact kept from the
+// last step starts from the impulse it ended that step with (the warm
+// start), which `warm_start` then applies, with gravity, to the velocities
+// the solver corrects.
+
+@compute @workgroup_size(256)
+fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = ball_index(id);
+    if i >= params.count {
+        return;
+    }
+    // Last step's contacts, to start from their impulses.
+    let old = state[i];
+    let old_slots = select(0u, slot_count(old), (old & SOLVED) != 0u);
+    var old_ball: array<u32, 12>;
+    var old_impulse: array<vec4<f32>, 12>;
+    for (var k = 0u; k < old_slots; k++) {
+        old_ball[k] = slot_other[i * SLOTS + k];
+        old_impulse[k] = slot_impulse[i * SLOTS + k];
+    }
+    let old_body = select(NONE, body_of[i], (old & SOLVED) != 0u);
+    let old_body_impulse = body_impulse[i];
+    for (var k = 0u; k < SLOTS; k++) {
+        slot_other[i * SLOTS + k] = NONE;
+        slot_impulse[i * SLOTS + k] = vec4<f32>(0.0);
+    }
+    var old_walls: array<vec4<f32>, 3>;
+    for (var axis = 0u; axis < 3u; axis++) {
+        old_walls[axis] = select(vec4<f32>(0.0), wall_impulse[i * 3u + axis], (old & SOLVED) != 0u && touches_wall(old, axis));
+        wall_impulse[i * 3u + axis] = vec4<f32>(0.0);
+    }
+    body_of[i] = NONE;
+    body_impulse[i] = vec4<f32>(0.0);
+    var s = state[i] & (ALIVE | (0xffffu << COLOR_SHIFT));
+    if (s & ALIVE) == 0u {
+        state[i] = s;
+        return;
+    }
+    let p = pos[i].xyz;
+    let r = pos[i].w;
+    let v = vel[i].xyz;
+    let margin = params.grid.y;
+    let step = dt();
+
+    // The nearest balls, nearest first (ties: lower number first).
+    var near_gap: array<f32, 12>;
+    var near_ball: array<u32, 12>;
+    var found = 0u;
+    let home = cell_coords(p);
+    for (var dz = -1; dz <= 1; dz++) {
+        for (var dy = -1; dy <= 1; dy++) {
+            for (var dx = -1; dx <= 1; dx++) {
+                let c = home + vec3<i32>(dx, dy, dz);
+                if any(c < vec3<i32>(0)) || any(c >= vec3<i32>(params.dims.xyz)) {
+                    continue;
+                }
+                let cell = cell_id(c);
+                for (var k = cell_start[cell]; k < cell_start[cell + 1u]; k++) {
+                    let j = cell_balls[k];
+                    if j == i {
+                        continue;
+                    }
+                    let d = p - pos[j].xyz;
+                    let dist = length(d);
+                    let gap = dist - r - pos[j].w;
+                    var n = vec3<f32>(0.0, 1.0, 0.0);
+                    if dist > 0.0 {
+                        n = d / dist;
+                    }
+                    let approach = max(0.0, -dot(v - vel[j].xyz, n));
+                    if gap >= margin + approach * step {
+                        continue;
+                    }
+                    // Insert, keeping the SLOTS nearest.
+                    var at = found;
+                    if found == SLOTS {
+                        if gap >= near_gap[SLOTS - 1u] {
+                            continue;
+                        }
+                        at = SLOTS - 1u;
+                    } else {
+                        found++;
+                    }
+                    while at > 0u && near_gap[at - 1u] > gap {
+                        near_gap[at] = near_gap[at - 1u];
+                        near_ball[at] = near_ball[at - 1u];
+                        at--;
+                    }
+                    near_gap[at] = gap;
+                    near_ball[at] = j;
+                }
+            }
+        }
+    }
+    for (var k = 0u; k < found; k++) {
+        let j = near_ball[k];
+        slot_other[i * SLOTS + k] = j;
+        for (var m = 0u; m < old_slots; m++) {
+            if old_ball[m] == j {
+                // Friction kept in the new tangent plane only.
+                let a = min(i, j);
+                let n = normalize(pos[a].xyz - pos[i + j - a].xyz);
+                let f = old_impulse[m].xyz;
+                slot_impulse[i * SLOTS + k] = vec4<f32>(f - dot(f, n) * n, old_impulse[m].w);
+            }
+        }
+    }
+    s |= found << SLOT_SHIFT;
+
+    // The nearest body within reach.
+    var best = NONE;
+    var best_gap = 0.0;
+    for (var b = 0u; b < params.bodies; b++) {
+        let body = bodies[b];
+        let d = p - body.sphere.xyz;
+        let dist = length(d);
+        let gap = dist - r - body.sphere.w;
+        var n = vec3<f32>(0.0, 1.0, 0.0);
+        if dist > 0.0 {
+            n = d / dist;
+        }
+        let approach = max(0.0, -dot(v - body_point_velocity(body, body.sphere.xyz + n * body.sphere.w), n));
+        if body.info.x == FIREBALL && params.consumes != 0u {
+            if gap < approach * step {
+                // Caught: gone from the room, its catch reported.
+                state[i] = s & ~ALIVE;
+                let e = atomicAdd(&event_count, 1u);
+                if e < arrayLength(&events) {
+                    events[e] = Event(vec4<f32>(p - n * r, bitcast<f32>(i)), vec4<f32>(-n, approach));
+                }
+                return;
+            }
+            continue;
+        }
+        if gap < margin + approach * step && (best == NONE || gap < best_gap) {
+            best = b;
+            best_gap = gap;
+        }
+    }
+    body_of[i] = best;
+    if best != NONE && best == old_body {
+        body_impulse[i] = old_body_impulse;
+    }
+
+    if found > 0u || best != NONE {
+        s |= SOLVED;
+        for (var axis = 0u; axis < 3u; axis++) {
+            let wall = nearest_wall(p, r, axis);
+            let approach = max(0.0, -dot(v, wall.xyz));
+            if wall.w < margin + approach * step {
+                s |= 1u << (WALL_SHIFT + axis);
+                let f = old_walls[axis];
+                wall_impulse[i * 3u + axis] = vec4<f32>(f.xyz - dot(f.xyz, wall.xyz) * wall.xyz, f.w);
+            }
+        }
+    }
+    state[i] = s;
+}
+
+// Each ball's velocity at the step's start is kept (for the bounces'
+// targets and the lone balls' flight), then gravity and its contacts' warm
+// impulses are given to it. A ball reads only its own contacts here.
+@compute @workgroup_size(256)
+fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = ball_index(id);
+    if i >= params.count || !alive(i) {
+        return;
+    }
+    vel_start[i] = vel[i];
+    let p = pos[i].xyz;
+    let r = pos[i].w;
+    let im = vel[i].w;
+    var dv = gravity() * dt();
+    var dw = vec3<f32>(0.0);
+    if (state[i] & SOLVED) != 0u {
+        for (var k = 0u; k < slot_count(state[i]); k++) {
+            let j = slot_other[i * SLOTS + k];
+            let a = min(i, j);
+            let n = normalize(pos[a].xyz - pos[i + j - a].xyz);
+            let total = slot_impulse[i * SLOTS + k];
+            let on_i = select(-1.0, 1.0, i == a) * (total.w * n + total.xyz);
+            dv += on_i * im;
+            dw += cross(r * normalize(pos[j].xyz - p), on_i) * inv_inertia(im, r);
+        }
+        for (var axis = 0u; axis < 3u; axis++) {
+            if touches_wall(state[i], axis) {
+                let n = nearest_wall(p, r, axis).xyz;
+                let total = wall_impulse[i * 3u + axis];
+                let on_i = total.w * n + total.xyz;
+                dv += on_i * im;
+                dw += cross(-r * n, on_i) * inv_inertia(im, r);
+            }
+        }
+        let b = body_of[i];
+        if b != NONE {
+            let n = normalize(p - bodies[b].sphere.xyz);
+            dv += body_impulse[i].w * n * im;
+        }
+    }
+    vel[i] = vec4<f32>(vel[i].xyz + dv, im);
+    spin[i] = vec4<f32>(spin[i].xyz + dw, 0.0);
+}

@@ -1,0 +1,78 @@
+// What leaves the step: each tumbler's push from the balls, summed in a
+// fixed order (no float atomics), and the instances the renderer draws.
+
+var<workgroup> push_impulse: array<vec3<f32>, 256>;
+var<workgroup> push_moment: array<vec3<f32>, 256>;
+
+// One workgroup a tumbler: its threads walk the cells around its spheres
+// in turn, each ball there once, then add their sums pairwise.
+@compute @workgroup_size(256)
+fn sum_tumbler_push(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let t = wid.x;
+    var lo = vec3<f32>(1e30);
+    var hi = vec3<f32>(-1e30);
+    var origin = vec3<f32>(0.0);
+    for (var b = 0u; b < params.bodies; b++) {
+        if bodies[b].info.x == t {
+            let reach = bodies[b].sphere.w + params.grid.x;
+            lo = min(lo, bodies[b].sphere.xyz - reach);
+            hi = max(hi, bodies[b].sphere.xyz + reach);
+            origin = bodies[b].origin.xyz;
+        }
+    }
+    var impulse = vec3<f32>(0.0);
+    var moment = vec3<f32>(0.0);
+    if lo.x <= hi.x {
+        let c0 = cell_coords(lo);
+        let size = cell_coords(hi) - c0 + 1;
+        let total = u32(size.x * size.y * size.z);
+        for (var k = lid; k < total; k += WORKGROUP) {
+            let off = vec3<i32>(i32(k % u32(size.x)), i32((k / u32(size.x)) % u32(size.y)), i32(k / u32(size.x * size.y)));
+            let cell = cell_id(c0 + off);
+            for (var m = cell_start[cell]; m < cell_start[cell + 1u]; m++) {
+                let i = cell_balls[m];
+                let b = body_of[i];
+                if b == NONE || bodies[b].info.x != t {
+                    continue;
+                }
+                let n = normalize(pos[i].xyz - bodies[b].sphere.xyz);
+                let on_tumbler = -body_impulse[i].w * n;
+                let point = bodies[b].sphere.xyz + n * bodies[b].sphere.w;
+                impulse += on_tumbler;
+                moment += cross(point - origin, on_tumbler);
+            }
+        }
+    }
+    push_impulse[lid] = impulse;
+    push_moment[lid] = moment;
+    workgroupBarrier();
+    for (var half = 128u; half > 0u; half /= 2u) {
+        if lid < half {
+            push_impulse[lid] += push_impulse[lid + half];
+            push_moment[lid] += push_moment[lid + half];
+        }
+        workgroupBarrier();
+    }
+    if lid == 0u {
+        tumbler_push[2u * t] = vec4<f32>(push_impulse[0], 0.0);
+        tumbler_push[2u * t + 1u] = vec4<f32>(push_moment[0], 0.0);
+    }
+}
+
+@compute @workgroup_size(256)
+fn write_instances(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = ball_index(id);
+    if i >= params.count {
+        return;
+    }
+    if !alive(i) {
+        instances[2u * i] = vec4<f32>(0.0);
+        instances[2u * i + 1u] = vec4<f32>(0.0);
+        return;
+    }
+    instances[2u * i] = pos[i];
+    instances[2u * i + 1u] = vec4<f32>(palette[state[i] >> COLOR_SHIFT].xyz, 0.0);
+}

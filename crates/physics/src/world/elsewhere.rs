@@ -1,0 +1,66 @@
+//! A world whose balls are simulated elsewhere (the GPU engine): it hands
+//! its balls over and steps its tumblers and fireball alone, and the balls'
+//! pushes on its tumblers come back as impulses.
+
+use crate::balls::Balls;
+use crate::tumbler::grounded_solve;
+use glam::DVec3;
+
+use super::World;
+
+impl World {
+    /// Takes every ball out of the world: from here it steps its tumblers
+    /// and fireball alone. [`World::reset_balls`] and [`World::throw_ball`]
+    /// put balls back in, to be taken again.
+    pub fn take_balls(&mut self) -> Balls {
+        let taken = self.balls.clone();
+        self.balls.truncate(0);
+        self.scratch.hit_wall.clear();
+        self.ball_hold = None;
+        for w in [&mut self.warm, &mut self.warm_next] {
+            w.begin(&[], 0, 0);
+        }
+        taken
+    }
+
+    /// Gives tumbler `t` a push from balls simulated elsewhere: `impulse`
+    /// in all (N s) and its `moment` about the tumbler's bottom centre
+    /// (N m s). Rolling, the floor holds the contact point and the tumbler
+    /// turns about it; sliding, the floor pushes up only, as for a ball's
+    /// push in this world.
+    pub fn push_tumbler(&mut self, t: usize, impulse: DVec3, moment: DVec3) {
+        let Some(tumbler) = self.tumblers.get(t) else {
+            return;
+        };
+        let strength = impulse.length();
+        if !(strength > 0.0) || !moment.is_finite() {
+            return;
+        }
+        let shape = &self.shape;
+        let centre = tumbler.bottom_center();
+        let (angular, linear) = match tumbler.mode {
+            crate::tumbler::FloorMode::Rolling => {
+                let contact = tumbler.contact_point();
+                let about_contact = moment + (centre - contact).cross(impulse);
+                let dw = tumbler.contact_inertia_inverse(shape) * about_contact;
+                (dw, tumbler.bottom_radius * dw.cross(DVec3::Y))
+            }
+            mode => {
+                let g = tumbler.center_of_mass();
+                let about_g = moment + (centre - g).cross(impulse);
+                let sol = grounded_solve(
+                    shape,
+                    tumbler.orientation,
+                    mode,
+                    self.config.tumblers.floor_friction,
+                    impulse / strength,
+                    about_g / strength,
+                );
+                (sol.dw * strength, sol.planar * strength)
+            }
+        };
+        let tumbler = &mut self.tumblers[t];
+        tumbler.angular_velocity += angular;
+        tumbler.center_velocity += linear;
+    }
+}
