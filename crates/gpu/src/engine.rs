@@ -23,7 +23,7 @@ const SHIFT_SWEEPS: u32 = 8;
 const RELAXATION: f32 = 1.0;
 /// The speculative margin, in the largest ball's radii: contacts this near
 /// are solved even if they do not close.
-const MARGIN_RADII: f64 = 0.05;
+const MARGIN_RADII: f64 = 0.01;
 /// The grid's cell, in the largest ball's radii: a pair closing by up to a
 /// radius in a step is found.
 const CELL_RADII: f64 = 3.0;
@@ -354,12 +354,11 @@ impl GpuBalls {
     }
 
     /// Puts the balls back as the scene starts them (I): `world` draws them
-    /// afresh (see [`World::reset_balls`]) and they are taken from it again.
+    /// afresh (see [`World::fresh_balls`]).
     pub fn restart(&mut self, world: &mut World) -> Result<(), GpuError> {
-        world
-            .reset_balls()
+        let balls = world
+            .fresh_balls()
             .map_err(|e| GpuError::Build(e.to_string()))?;
-        let balls = world.take_balls();
         self.upload(&balls, 0);
         self.params.count = balls.len() as u32;
         self.write_instances();
@@ -540,7 +539,7 @@ impl GpuBalls {
             &self.report,
             report_size(self.tumblers) as usize,
         )?;
-        let push: &[[f32; 4]] = bytemuck::cast_slice(&bytes[..32 * self.tumblers]);
+        let push: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes[..32 * self.tumblers]);
         for t in 0..self.tumblers {
             let [ix, iy, iz, _] = push[2 * t];
             let [mx, my, mz, _] = push[2 * t + 1];
@@ -550,7 +549,7 @@ impl GpuBalls {
         }
         let at = 32 * self.tumblers;
         let count = u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
-        let caught: &[Catch] = bytemuck::cast_slice(&bytes[at + 16..]);
+        let caught: Vec<Catch> = bytemuck::pod_collect_to_vec(&bytes[at + 16..]);
         let first = self.catches.len();
         for c in caught
             .iter()
@@ -601,10 +600,10 @@ impl GpuBalls {
         let vel = copy(&self.buffers.vel, 16 * n)?;
         let spin = copy(&self.buffers.spin, 16 * n)?;
         let state = copy(&self.buffers.state, 4 * n)?;
-        let pos: &[[f32; 4]] = bytemuck::cast_slice(&pos);
-        let vel: &[[f32; 4]] = bytemuck::cast_slice(&vel);
-        let spin: &[[f32; 4]] = bytemuck::cast_slice(&spin);
-        let state: &[u32] = bytemuck::cast_slice(&state);
+        let pos: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&pos);
+        let vel: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&vel);
+        let spin: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&spin);
+        let state: Vec<u32> = bytemuck::pod_collect_to_vec(&state);
         let xyz = |v: &[f32; 4]| Vec3::new(v[0], v[1], v[2]);
         Ok(BallState {
             positions: pos.iter().map(xyz).collect(),

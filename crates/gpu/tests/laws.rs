@@ -48,3 +48,109 @@ fn a_pit_of_balls_settles_without_overlap_or_escape() {
         assert!(share_at_rest(&state, 0.05) >= 0.99);
     }
 }
+
+/// Successive bounce heights of one ball dropped from `drop` (m) onto a
+/// floor of restitution `e`: the ratio of the second to the first.
+fn rebound_ratio(drop: f64, e: f64) -> f64 {
+    let compute = compute();
+    let mut config = empty_room(DVec3::new(2.0, 3.0, 2.0), 0);
+    config.room.restitution = e;
+    config.room.rolling_resistance = 0.0;
+    let r = config.balls.radius;
+    config.balls.placements = vec![placed(DVec3::new(0.0, r + drop, 0.0), DVec3::ZERO)];
+    let (mut world, mut balls) = build(&compute, config, 1);
+    let mut apexes = Vec::new();
+    let mut last_vy = 0.0f32;
+    let mut last_y = 0.0f32;
+    for _ in 0..600 {
+        step(&mut world, &mut balls);
+        let state = balls.read().unwrap();
+        let (y, vy) = (state.positions[0].y, state.velocities[0].y);
+        if last_vy > 0.0 && vy <= 0.0 {
+            apexes.push(f64::from(y.max(last_y)) - r);
+        }
+        (last_vy, last_y) = (vy, y);
+        if apexes.len() == 2 {
+            break;
+        }
+    }
+    assert_eq!(apexes.len(), 2, "two bounces from {drop} m");
+    apexes[1] / apexes[0]
+}
+
+#[test]
+fn each_bounce_rises_e_squared_as_high_as_the_last() {
+    for (drop, e) in [(1.0, 0.8), (0.6, 0.5), (1.5, 0.9)] {
+        let ratio = rebound_ratio(drop, e);
+        let law = e * e;
+        assert!(
+            (ratio / law - 1.0).abs() < 0.02,
+            "drop {drop}, e {e}: h1/h0 {ratio}, e² {law}"
+        );
+    }
+}
+
+#[test]
+fn elastic_balls_without_gravity_keep_their_energy_and_momentum() {
+    let compute = compute();
+    for seed in [2, 9] {
+        // A gas: the balls fill 0.4 % of the box, and meet two at a time.
+        let mut config = empty_room(DVec3::new(8.0, 4.0, 8.0), 1000);
+        config.gravity = 0.0;
+        config.balls.restitution = 1.0;
+        config.room.restitution = 1.0;
+        config.balls.friction = 0.0;
+        config.room.friction = 0.0;
+        config.room.rolling_resistance = 0.0;
+        // Every impact bounces, however slow, as in the CPU engine's elastic room.
+        config.solver.bounce_threshold = 0.0;
+        config.balls.speed_min = 1.0;
+        config.balls.speed_max = 3.0;
+        config.balls.start_fill = 1.0;
+        let (mut world, mut balls) = build(&compute, config, seed);
+        let start = balls.read().unwrap().kinetic_energy();
+        let mut lowest = start;
+        for s in 0..1200 {
+            step(&mut world, &mut balls);
+            if s % 60 == 59 {
+                let now = balls.read().unwrap().kinetic_energy();
+                // Single precision rounds each impulse; a gain beyond that is made.
+                assert!(
+                    now <= start * (1.0 + 1e-4),
+                    "seed {seed}: {now} J from {start} J at step {s}"
+                );
+                lowest = lowest.min(now);
+            }
+        }
+        assert!(
+            lowest >= 0.99 * start,
+            "seed {seed}: fell to {lowest} J from {start} J"
+        );
+    }
+}
+
+#[test]
+fn fast_balls_and_the_fireball_stay_finite_and_in_the_room() {
+    let compute = compute();
+    let mut config = empty_room(DVec3::new(3.0, 2.5, 3.0), 60);
+    config.balls.speed_min = 8.0;
+    config.balls.speed_max = 15.0;
+    config.fireball.starts_active = true;
+    config.fireball.consumes_balls = false;
+    config.fireball.speed = 12.0;
+    let (mut world, mut balls) = build(&compute, config, 4);
+    let (min, max) = (world.room().min, world.room().max);
+    let steps = std::env::var("ROLYPOLY_NAN_STEPS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(20_000u32);
+    for s in 0..steps {
+        step(&mut world, &mut balls);
+        if s % 1000 == 999 || s + 1 == steps {
+            let state = balls.read().unwrap();
+            let (_, escaped) = overlap_and_escapes(&state, min, max);
+            assert_eq!(escaped, 0, "step {s}");
+            assert!(state.velocities.iter().all(|v| v.is_finite()), "step {s}");
+        }
+    }
+}

@@ -100,9 +100,15 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         slot_other[i * SLOTS + k] = j;
         for (var m = 0u; m < old_slots; m++) {
             if old_ball[m] == j {
-                // Friction kept in the new tangent plane only.
                 let a = min(i, j);
                 let n = normalize(pos[a].xyz - pos[i + j - a].xyz);
+                // A pair that parts faster than the pile's own jitter
+                // bounced last step: that impulse is not this step's.
+                let parting = dot(vel[a].xyz - vel[i + j - a].xyz, n);
+                if parting > params.grid.z + params.room_max.w * step {
+                    continue;
+                }
+                // Friction kept in the new tangent plane only.
                 let f = old_impulse[m].xyz;
                 slot_impulse[i * SLOTS + k] = vec4<f32>(f - dot(f, n) * n, old_impulse[m].w);
             }
@@ -149,10 +155,14 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         s |= SOLVED;
         for (var axis = 0u; axis < 3u; axis++) {
             let wall = nearest_wall(p, r, axis);
-            let approach = max(0.0, -dot(v, wall.xyz));
+            let closing = -dot(v, wall.xyz);
+            let approach = max(0.0, closing);
             if wall.w < margin + approach * step {
                 s |= 1u << (WALL_SHIFT + axis);
-                let f = old_walls[axis];
+                var f = old_walls[axis];
+                if -closing > params.grid.z + params.room_max.w * step {
+                    f = vec4<f32>(0.0);
+                }
                 wall_impulse[i * 3u + axis] = vec4<f32>(f.xyz - dot(f.xyz, wall.xyz) * wall.xyz, f.w);
             }
         }

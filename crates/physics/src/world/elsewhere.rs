@@ -6,7 +6,7 @@ use crate::balls::Balls;
 use crate::tumbler::grounded_solve;
 use glam::DVec3;
 
-use super::World;
+use super::{BuildError, World};
 
 impl World {
     /// Takes every ball out of the world: from here it steps its tumblers
@@ -21,6 +21,17 @@ impl World {
             w.begin(&[], 0, 0);
         }
         taken
+    }
+
+    /// The balls drawn afresh as the scene starts them (see
+    /// [`World::reset_balls`]), taken out of the world as by
+    /// [`World::take_balls`].
+    pub fn fresh_balls(&mut self) -> Result<Balls, BuildError> {
+        let b = &self.config.balls;
+        self.balls = Balls::with_uniform(b.total(), b.radius, b.mass);
+        self.scratch.hit_wall = vec![false; b.total()];
+        self.reset_balls()?;
+        Ok(self.take_balls())
     }
 
     /// Gives tumbler `t` a push from balls simulated elsewhere: `impulse`

@@ -1,0 +1,168 @@
+//! What a user sees the GPU engine do: reruns that repeat to the bit, the
+//! fireball catching balls, tumblers shoved by balls and righting
+//! themselves, a thrown ball, a restart.
+
+mod common;
+
+use common::*;
+use glam::DVec3;
+use rolypoly_physics::{EventKind, WorldConfig};
+
+fn crowded_default(balls: usize) -> WorldConfig {
+    let mut config = WorldConfig::default();
+    config.balls.count = balls;
+    config.balls.pour.rate = 0.0;
+    config.fireball.starts_active = true;
+    config
+}
+
+fn bits(state: &rolypoly_gpu::BallState) -> Vec<u32> {
+    state
+        .positions
+        .iter()
+        .chain(&state.velocities)
+        .chain(&state.spins)
+        .flat_map(|v| v.to_array().map(f32::to_bits))
+        .collect()
+}
+
+#[test]
+fn a_rerun_repeats_every_bit() {
+    let compute = compute();
+    let run = |seed| {
+        let (mut world, mut balls) = build(&compute, crowded_default(1500), seed);
+        for _ in 0..240 {
+            step(&mut world, &mut balls);
+        }
+        let tumblers: Vec<_> = world.tumblers().iter().map(|t| t.bottom_center()).collect();
+        (bits(&balls.read().unwrap()), tumblers)
+    };
+    let first = run(3);
+    assert_eq!(first, run(3));
+    assert_ne!(first.0, run(4).0, "another seed, another run");
+}
+
+#[test]
+fn the_fireball_catches_the_balls_it_meets() {
+    let compute = compute();
+    for seed in [1, 6] {
+        let mut config = crowded_default(400);
+        config.fireball.consumes_balls = true;
+        let (mut world, mut balls) = build(&compute, config, seed);
+        let mut caught = Vec::new();
+        for _ in 0..360 {
+            step(&mut world, &mut balls);
+            balls.take_catches(&mut caught);
+        }
+        let state = balls.read().unwrap();
+        let dead: Vec<usize> = (0..state.alive.len())
+            .filter(|&i| !state.alive[i])
+            .collect();
+        let mut reported: Vec<usize> = caught
+            .iter()
+            .map(|e| match e.kind {
+                EventKind::FireballBall { ball } => ball,
+                other => panic!("{other:?}"),
+            })
+            .collect();
+        reported.sort_unstable();
+        assert!(dead.len() >= 3, "seed {seed}: caught {}", dead.len());
+        assert_eq!(reported, dead, "seed {seed}: every catch reported once");
+    }
+}
+
+#[test]
+fn balls_shove_a_tumbler_which_rights_itself() {
+    let compute = compute();
+    for speed in [4.0, 6.0] {
+        let mut config = WorldConfig::default();
+        config.fireball.starts_active = false;
+        config.tumblers.placements.truncate(1);
+        let t = config.tumblers.placements[0].clone();
+        config.balls.count = 0;
+        // A volley at the head, from the side.
+        config.balls.placements = (0..12)
+            .map(|k| {
+                let (row, column) = ((k / 3) as f64, (k % 3) as f64 - 1.0);
+                let at = DVec3::new(t.x - 0.6 - 0.3 * row, 0.55, t.z + 0.3 * column);
+                placed(at, DVec3::new(speed, 0.5, 0.0))
+            })
+            .collect();
+        let (mut world, mut balls) = build(&compute, config, 1);
+        let tilt = |world: &rolypoly_physics::World| world.tumblers()[0].tilt();
+        let mut early = 0.0f64;
+        for _ in 0..240 {
+            step(&mut world, &mut balls);
+            early = early.max(tilt(&world));
+        }
+        assert!(
+            early.to_degrees() > 3.0,
+            "speed {speed}: leaned only {:.2}°",
+            early.to_degrees()
+        );
+        for _ in 0..960 {
+            step(&mut world, &mut balls);
+        }
+        // Still rocking (a roly-poly is barely damped), but less, and about
+        // the upright: its axis, averaged over the last two seconds, stands.
+        let (mut late, mut axis) = (0.0f64, DVec3::ZERO);
+        for _ in 0..240 {
+            step(&mut world, &mut balls);
+            late = late.max(tilt(&world));
+            axis += world.tumblers()[0].axis();
+        }
+        let mean_tilt = axis.normalize().y.acos().to_degrees();
+        assert!(
+            late < 0.8 * early,
+            "speed {speed}: rocks {:.2}° after {:.2}°",
+            late.to_degrees(),
+            early.to_degrees()
+        );
+        assert!(
+            mean_tilt < 3.0,
+            "speed {speed}: leans {mean_tilt:.2}° on average"
+        );
+    }
+}
+
+#[test]
+fn a_thrown_ball_flies_and_a_restart_takes_it_away() {
+    let compute = compute();
+    let mut config = crowded_default(50);
+    config.fireball.starts_active = false;
+    let (mut world, mut balls) = build(&compute, config, 2);
+    let before = balls.read().unwrap();
+    let thrown = balls
+        .throw_ball(
+            &mut world,
+            DVec3::new(0.0, 2.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+        )
+        .unwrap();
+    assert_eq!((thrown, balls.len()), (50, 51));
+    step(&mut world, &mut balls);
+    let state = balls.read().unwrap();
+    let dt = world.config().solver.dt as f32;
+    let g = world.config().gravity as f32;
+    let expected = glam::Vec3::new(dt, 2.0 - 0.5 * g * dt * dt, 0.0);
+    assert!(
+        state.positions[thrown].distance(expected) < 1e-5,
+        "{}",
+        state.positions[thrown]
+    );
+    assert!((state.velocities[thrown].y + g * dt).abs() < 1e-5);
+    for _ in 0..120 {
+        step(&mut world, &mut balls);
+    }
+    balls.restart(&mut world).unwrap();
+    let after = balls.read().unwrap();
+    assert_eq!(after.positions.len(), 50, "the thrown ball is gone");
+    assert!(after.alive.iter().all(|&a| a));
+    assert_eq!(
+        after.colors, before.colors,
+        "every ball its starting colour"
+    );
+    assert_ne!(after.positions, before.positions, "new random places");
+    let (overlap, escaped) = overlap_and_escapes(&after, world.room().min, world.room().max);
+    assert!(overlap < 1e-6 && escaped == 0, "{overlap} {escaped}");
+}
