@@ -45,6 +45,8 @@ pub struct BallState {
     pub alive: Vec<bool>,
     /// The colour each shows.
     pub colors: Vec<[f32; 3]>,
+    /// What each took its colour from.
+    pub tints: Vec<Tint>,
 }
 
 impl BallState {
@@ -60,6 +62,23 @@ impl BallState {
                     + 0.5 * inertia * self.spins[i].as_dvec3().length_squared()
             })
             .sum()
+    }
+
+    /// The balls as the CPU engine keeps them (see [`World::put_balls`]).
+    pub fn to_balls(&self) -> Balls {
+        let vectors = |v: &[Vec3]| v.iter().map(|v| v.as_dvec3()).collect();
+        Balls::from_parts(
+            vectors(&self.positions),
+            vectors(&self.velocities),
+            vectors(&self.spins),
+            self.radii.iter().map(|&r| f64::from(r)).collect(),
+            self.inverse_masses
+                .iter()
+                .map(|&m| 1.0 / f64::from(m))
+                .collect(),
+            self.tints.clone(),
+            self.alive.clone(),
+        )
     }
 
     /// Total momentum of the live balls (N s).
@@ -88,6 +107,19 @@ impl PaletteLayout {
             Tint::Surface(s) => Self::SURFACES + s.index() as u32,
             Tint::Tumbler(t) => self.tumblers + t as u32,
             Tint::Placed(k) => self.placed + k as u32,
+        }
+    }
+
+    fn tint(self, index: u32) -> Tint {
+        let surfaces = Self::SURFACES..Self::SURFACES + 6;
+        if surfaces.contains(&index) {
+            Tint::Surface(rolypoly_physics::Surface::ALL[(index - Self::SURFACES) as usize])
+        } else if (self.tumblers..self.placed).contains(&index) {
+            Tint::Tumbler((index - self.tumblers) as usize)
+        } else if index >= self.placed {
+            Tint::Placed((index - self.placed) as usize)
+        } else {
+            Tint::White
         }
     }
 }
@@ -395,6 +427,8 @@ impl GpuBalls {
         let f32x4 = |v: DVec3, w: f32| [v.x as f32, v.y as f32, v.z as f32, w];
         for (t, tumbler) in world.tumblers().iter().enumerate() {
             let origin = tumbler.bottom_center();
+            let (pivot, inverse) = world.tumbler_pivot(t).unwrap_or_default();
+            let row = |k: usize| f32x4(inverse.row(k), 0.0);
             for (s, sphere) in shape.spheres.iter().enumerate() {
                 bodies.push(Body {
                     sphere: f32x4(tumbler.sphere_center(shape, s), sphere.radius as f32),
@@ -407,6 +441,8 @@ impl GpuBalls {
                         self.palette_layout.index(Tint::Tumbler(t)),
                         0,
                     ],
+                    turn_inverse: [row(0), row(1), row(2)],
+                    pivot: f32x4(pivot, 0.0),
                 });
             }
         }
@@ -417,6 +453,7 @@ impl GpuBalls {
                 velocity: f32x4(f.velocity, 0.0),
                 spin: [0.0; 4],
                 info: [FIREBALL, 0, 0, 0],
+                ..Body::default()
             });
         }
         bodies
@@ -541,11 +578,11 @@ impl GpuBalls {
         )?;
         let push: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes[..32 * self.tumblers]);
         for t in 0..self.tumblers {
-            let [ix, iy, iz, _] = push[2 * t];
+            let [ix, iy, iz, pushing_mass] = push[2 * t];
             let [mx, my, mz, _] = push[2 * t + 1];
             let impulse = DVec3::new(ix.into(), iy.into(), iz.into());
             let moment = DVec3::new(mx.into(), my.into(), mz.into());
-            world.push_tumbler(t, impulse, moment);
+            world.push_tumbler(t, impulse, moment, pushing_mass.into());
         }
         let at = 32 * self.tumblers;
         let count = u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
@@ -618,6 +655,10 @@ impl GpuBalls {
                     let [r, g, b, _] = self.palette[(s >> 16) as usize];
                     [r, g, b]
                 })
+                .collect(),
+            tints: state
+                .iter()
+                .map(|s| self.palette_layout.tint(s >> 16))
                 .collect(),
         })
     }

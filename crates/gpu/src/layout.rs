@@ -53,6 +53,11 @@ pub struct Body {
     pub spin: [f32; 4],
     /// Tumbler number (or [`FIREBALL`]), sphere number, palette colour.
     pub info: [u32; 4],
+    /// The rows of the inverse inertia about the point it turns about
+    /// (zero for the fireball, which no ball moves).
+    pub turn_inverse: [[f32; 4]; 3],
+    /// The point it turns about.
+    pub pivot: [f32; 4],
 }
 
 /// `Event` in the WGSL: a ball the fireball caught.
@@ -101,8 +106,8 @@ mod tests {
 
     #[test]
     fn the_structs_are_as_large_as_the_shader_reads_them() {
-        assert_eq!(std::mem::size_of::<Params>(), 144);
-        assert_eq!(std::mem::size_of::<Body>(), 80);
+        assert_eq!(std::mem::size_of::<Params>(), 128);
+        assert_eq!(std::mem::size_of::<Body>(), 144);
         assert_eq!(std::mem::size_of::<Catch>(), 32);
     }
 }

@@ -73,10 +73,14 @@ impl Scan {
                 cache: None,
             })
         };
+        // Each level's length, down to the one block whose total is the sum.
         let mut lens = vec![len.max(1)];
-        while *lens.last().unwrap_or(&1) > 1 {
-            let above = lens.last().unwrap_or(&1).div_ceil(u64::from(WORKGROUP));
+        loop {
+            let above = lens[lens.len() - 1].div_ceil(u64::from(WORKGROUP));
             lens.push(above);
+            if above == 1 {
+                break;
+            }
         }
         let totals: Vec<wgpu::Buffer> = lens[1..]
             .iter()
@@ -148,6 +152,53 @@ impl Scan {
             pass.set_bind_group(0, &level.bind_group, &[]);
             let (x, y) = groups(level.len);
             pass.dispatch_workgroups(x, y, 1);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::readback::read_buffer;
+
+    /// The GPU's exclusive scan of `values`.
+    fn scanned(compute: &crate::Compute, values: &[u32]) -> Vec<u32> {
+        let device = &compute.device;
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("values"),
+            contents: bytemuck::cast_slice(values),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        });
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("staging"),
+            size: buffer.size(),
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let scan = Scan::new(device, &buffer, values.len() as u64);
+        let mut encoder = device.create_command_encoder(&Default::default());
+        scan.record(&mut encoder);
+        encoder.copy_buffer_to_buffer(&buffer, 0, &staging, 0, buffer.size());
+        compute.queue.submit([encoder.finish()]);
+        let bytes = read_buffer(device, &staging, 4 * values.len()).unwrap();
+        bytemuck::pod_collect_to_vec(&bytes)
+    }
+
+    #[test]
+    fn the_scan_matches_a_running_sum_at_the_block_edges() {
+        let compute = crate::Compute::headless().expect("an adapter");
+        // One block, one past it, two levels, one past two levels, three.
+        for len in [1, 2, 255, 256, 257, 65_535, 65_536, 65_537, 300_000] {
+            let values: Vec<u32> = (0..len as u32).map(|i| (i * 7 + 3) % 5).collect();
+            let expected: Vec<u32> = values
+                .iter()
+                .scan(0, |sum, &v| {
+                    let before = *sum;
+                    *sum += v;
+                    Some(before)
+                })
+                .collect();
+            assert_eq!(scanned(&compute, &values), expected, "{len} values");
         }
     }
 }

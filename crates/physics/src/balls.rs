@@ -97,6 +97,32 @@ impl Balls {
         }
     }
 
+    /// Balls from their fields, one entry per ball in each: centres,
+    /// velocities, spins, radii, masses, colours and whether each is in
+    /// play. For balls simulated elsewhere and read back (the GPU engine).
+    #[allow(clippy::too_many_arguments)]
+    pub fn from_parts(
+        position: Vec<DVec3>,
+        velocity: Vec<DVec3>,
+        spin: Vec<DVec3>,
+        radius: Vec<f64>,
+        mass: Vec<f64>,
+        tint: Vec<Tint>,
+        alive: Vec<bool>,
+    ) -> Balls {
+        let inv_mass = mass.iter().map(|m| 1.0 / m).collect();
+        Balls {
+            position,
+            velocity,
+            spin,
+            radius,
+            mass,
+            inv_mass,
+            tint,
+            alive,
+        }
+    }
+
     /// How many balls there are, caught ones included.
     pub fn len(&self) -> usize {
         self.position.len()

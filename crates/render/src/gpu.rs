@@ -116,7 +116,8 @@ impl Gpu {
             // traced; and lets the profiler time the frame's passes.
             required_features: adapter.features()
                 & (wgpu::Features::SHADER_EARLY_DEPTH_TEST | wgpu::Features::TIMESTAMP_QUERY),
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+            // What the GPU ball engine needs too, so that it may step on this device.
+            required_limits: rolypoly_gpu::limits(&adapter),
             experimental_features: wgpu::ExperimentalFeatures::disabled(),
             memory_hints: wgpu::MemoryHints::Performance,
             trace: wgpu::Trace::Off,

@@ -37,6 +37,6 @@ pub use renderer::{FrameStats, PassTimes, RenderSettings, Renderer};
 pub use snapshot::Snapshot;
 pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
 pub use view::{
-    BallView, Bloom, CEILING_FALLOFF, Light, LightConfig, ParticleView, PointLight, SceneView,
-    TumblerView, particle_color,
+    BallView, Bloom, CEILING_FALLOFF, GpuBallBuffer, Light, LightConfig, ParticleView, PointLight,
+    SceneView, TumblerView, particle_color,
 };

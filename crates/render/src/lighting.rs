@@ -101,6 +101,7 @@ mod tests {
             fireball_light: None,
             debug_lines: Vec::new(),
             debug_lines_over: Vec::new(),
+            gpu_balls: None,
         }
     }
 

@@ -229,6 +229,26 @@ pub fn particle_color(kind: ParticleKind) -> Vec3 {
     }
 }
 
+/// The balls as the GPU engine wrote them, on the GPU: `count` instances
+/// of 32 bytes (centre and radius, colour, a pad), as [`BallInstance`]
+/// lays them out, in a vertex buffer of the renderer's own device.
+///
+/// [`BallInstance`]: crate::instances::BallInstance
+#[derive(Clone, Debug)]
+pub struct GpuBallBuffer {
+    /// The instances.
+    pub buffer: wgpu::Buffer,
+    /// How many are in use.
+    pub count: u32,
+}
+
+impl PartialEq for GpuBallBuffer {
+    /// The same buffer, as many balls.
+    fn eq(&self, other: &GpuBallBuffer) -> bool {
+        self.buffer == other.buffer && self.count == other.count
+    }
+}
+
 /// Everything a frame draws: plain data read from the world and the effects.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneView {
@@ -253,6 +273,9 @@ pub struct SceneView {
     pub debug_lines: Vec<LineVertex>,
     /// As `debug_lines`, drawn over everything (what lies inside a body).
     pub debug_lines_over: Vec<LineVertex>,
+    /// The balls on the GPU, drawn from there instead of `balls` (which is
+    /// then empty), where the GPU engine steps them.
+    pub gpu_balls: Option<GpuBallBuffer>,
 }
 
 impl SceneView {
@@ -297,6 +320,7 @@ impl SceneView {
             fireball,
             debug_lines: Vec::new(),
             debug_lines_over: Vec::new(),
+            gpu_balls: None,
         }
     }
 

@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::engine::Engine;
 use crate::scene::Overrides;
 use rolypoly_render::{DebugViews, LightConfig, QualityChoice};
 
@@ -199,6 +200,11 @@ pub struct SceneArgs {
         allow_negative_numbers = true
     )]
     pub gravity: Option<f64>,
+
+    /// Which engine steps the balls: cpu or gpu (overrides solver.engine
+    /// of the scene).
+    #[arg(long, value_name = "ENGINE", global = true, value_parser = parse_engine, help_heading = SCENE_HEADING)]
+    pub engine: Option<Engine>,
 }
 
 impl SceneArgs {
@@ -207,6 +213,7 @@ impl SceneArgs {
         Overrides {
             balls: self.balls,
             gravity: self.gravity,
+            engine: self.engine,
         }
     }
 }
@@ -360,6 +367,15 @@ fn parse_show(text: &str) -> Result<DebugViews, String> {
 }
 
 /// A quality level by name.
+fn parse_engine(text: &str) -> Result<Engine, String> {
+    Engine::from_name(text.trim()).ok_or_else(|| {
+        format!(
+            "`{text}` is not an engine: use one of {}",
+            Engine::NAMES.join(", ")
+        )
+    })
+}
+
 fn parse_quality(text: &str) -> Result<QualityChoice, String> {
     QualityChoice::from_name(text.trim()).ok_or_else(|| {
         format!(

@@ -90,6 +90,14 @@ impl Frames {
             .capture(&sim.view_showing(light, &self.debug), camera)?)
     }
 
+    /// Moves `sim`'s balls to the GPU engine, on the device these frames
+    /// are drawn with: they are drawn from where it steps them.
+    pub fn move_balls_to_gpu(&self, sim: &mut Simulation) -> anyhow::Result<()> {
+        let gpu = &self.snapshot.gpu;
+        sim.move_balls_to_gpu(&gpu.device, &gpu.queue, &gpu.adapter)?;
+        Ok(())
+    }
+
     /// How the frames are drawn, in words, and on what.
     pub fn describe(&self) -> String {
         format!(

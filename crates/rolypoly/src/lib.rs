@@ -13,6 +13,7 @@
 pub mod cli;
 pub mod clip;
 pub mod commands;
+pub mod engine;
 pub mod frames;
 pub mod sandbox;
 pub mod scene;

@@ -1,10 +1,14 @@
 //! What every run shows: the world and its particle effects, stepped
 //! together at the world's fixed step, and the one view of both that the
-//! renderer draws.
+//! renderer draws. With the GPU engine, the balls are stepped on the GPU
+//! after the world's tumblers and fireball, and drawn from there.
+
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use rolypoly_fx::{Effects, EffectsConfig};
+use rolypoly_gpu::{GpuBalls, GpuError};
 use rolypoly_physics::{Event, StepTimes, World};
-use rolypoly_render::{DebugViews, LightConfig, SceneView};
+use rolypoly_render::{DebugViews, GpuBallBuffer, LightConfig, SceneView};
 
 /// The world and its effects.
 #[derive(Clone)]
@@ -18,6 +22,10 @@ pub struct Simulation {
     /// The steps' stage times since they were last taken, summed, and how
     /// many steps.
     step_times: (StepTimes, u32),
+    /// The balls, where the GPU engine steps them (the world then has none).
+    gpu: Option<Arc<Mutex<GpuBalls>>>,
+    /// Why the GPU engine stopped, if it did.
+    gpu_failure: Option<String>,
 }
 
 impl Simulation {
@@ -29,6 +37,36 @@ impl Simulation {
             fx: Effects::new(effects, seed),
             events: Vec::new(),
             step_times: (StepTimes::default(), 0),
+            gpu: None,
+            gpu_failure: None,
+        }
+    }
+
+    /// Moves the world's balls onto `device`, where the GPU engine steps
+    /// them from here on.
+    pub fn move_balls_to_gpu(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        adapter: &wgpu::Adapter,
+    ) -> Result<(), GpuError> {
+        let balls = GpuBalls::new(device.clone(), queue.clone(), adapter, &mut self.world)?;
+        self.gpu = Some(Arc::new(Mutex::new(balls)));
+        Ok(())
+    }
+
+    /// The GPU engine, where it steps the balls.
+    pub fn gpu_balls(&self) -> Option<MutexGuard<'_, GpuBalls>> {
+        self.gpu
+            .as_ref()
+            .map(|gpu| gpu.lock().unwrap_or_else(PoisonError::into_inner))
+    }
+
+    /// Fails with why the GPU engine stopped, if it did.
+    pub fn check_gpu(&self) -> anyhow::Result<()> {
+        match &self.gpu_failure {
+            Some(why) => anyhow::bail!("{why}"),
+            None => Ok(()),
         }
     }
 
@@ -45,6 +83,15 @@ impl Simulation {
         sum.impacts += last.impacts;
         *steps += 1;
         self.world.take_events(&mut self.events);
+        if let Some(gpu) = &self.gpu {
+            let mut balls = gpu.lock().unwrap_or_else(PoisonError::into_inner);
+            if self.gpu_failure.is_none()
+                && let Err(e) = balls.step(&mut self.world)
+            {
+                self.gpu_failure = Some(e.to_string());
+            }
+            balls.take_catches(&mut self.events);
+        }
         self.fx.consume(&self.events, &self.world);
         self.fx
             .update(self.world.config().solver.dt, self.world.fireball());
@@ -66,9 +113,16 @@ impl Simulation {
     /// What the renderer draws now: the bodies (a held tumbler enlarged),
     /// the effects, lit by `light`.
     pub fn view(&self, light: &LightConfig) -> SceneView {
-        SceneView::from_world(&self.world, self.world.grabbed())
+        let mut view = SceneView::from_world(&self.world, self.world.grabbed())
             .with_effects(&self.fx, &self.world)
-            .with_light(light)
+            .with_light(light);
+        if let Some(balls) = self.gpu_balls() {
+            view.gpu_balls = Some(GpuBallBuffer {
+                buffer: balls.instances().clone(),
+                count: balls.len() as u32,
+            });
+        }
+        view
     }
 
     /// As [`Simulation::view`], with the debug views `debug` shows of the

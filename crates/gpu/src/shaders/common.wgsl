@@ -53,6 +53,10 @@ struct Body {
     spin: vec4<f32>,
     // x: tumbler number (or FIREBALL), y: sphere number, z: palette colour.
     info: vec4<u32>,
+    // The rows of the inverse inertia about the pivot it turns about when
+    // pushed (zero for the fireball, which no ball moves), and the pivot.
+    turn_inverse: array<vec4<f32>, 3>,
+    pivot: vec4<f32>,
 }
 
 struct Event {
@@ -95,7 +99,8 @@ struct Event {
 @group(0) @binding(18) var<storage, read> palette: array<vec4<f32>>;
 // What the renderer draws: centre and radius, colour (see `BallInstance`).
 @group(0) @binding(19) var<storage, read_write> instances: array<vec4<f32>>;
-// Each tumbler's push from the balls: impulse, then moment about its origin.
+// Each tumbler's push from the balls: impulse (w: the pushing balls' mass),
+// then moment about its origin.
 @group(0) @binding(20) var<storage, read_write> tumbler_push: array<vec4<f32>>;
 @group(0) @binding(21) var<storage, read_write> events: array<Event>;
 @group(0) @binding(22) var<storage, read_write> event_count: atomic<u32>;
@@ -115,6 +120,16 @@ fn dt() -> f32 {
 
 fn gravity() -> vec3<f32> {
     return vec3<f32>(0.0, -params.room_max.w, 0.0);
+}
+
+// The unit vector along `d`, or up where `d` is none: two balls pressed
+// into the same corner stand at the same point.
+fn direction(d: vec3<f32>) -> vec3<f32> {
+    let len = length(d);
+    if len > 0.0 {
+        return d / len;
+    }
+    return vec3<f32>(0.0, 1.0, 0.0);
 }
 
 fn cell_coords(p: vec3<f32>) -> vec3<i32> {
@@ -197,7 +212,20 @@ fn contact_count(i: u32) -> u32 {
     return max(n, 1u);
 }
 
-// The point of body `b`'s sphere nearest `p`, and that point's velocity.
+// How easily a push along `n` at `point` moves body `b` there: the inverse
+// of its effective mass, turning about its pivot.
+fn body_inverse_mass(b: Body, point: vec3<f32>, n: vec3<f32>) -> f32 {
+    let lever = point - b.pivot.xyz;
+    let moment = cross(lever, n);
+    let turn = vec3<f32>(
+        dot(b.turn_inverse[0].xyz, moment),
+        dot(b.turn_inverse[1].xyz, moment),
+        dot(b.turn_inverse[2].xyz, moment),
+    );
+    return max(0.0, dot(n, cross(turn, lever)));
+}
+
+// The velocity of the material point of body `b` at `point`.
 fn body_point_velocity(b: Body, point: vec3<f32>) -> vec3<f32> {
     return b.velocity.xyz + cross(b.spin.xyz, point - b.origin.xyz);
 }

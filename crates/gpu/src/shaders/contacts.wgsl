@@ -101,7 +101,7 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         for (var m = 0u; m < old_slots; m++) {
             if old_ball[m] == j {
                 let a = min(i, j);
-                let n = normalize(pos[a].xyz - pos[i + j - a].xyz);
+                let n = direction(pos[a].xyz - pos[i + j - a].xyz);
                 // A pair that parts faster than the pile's own jitter
                 // bounced last step: that impulse is not this step's.
                 let parting = dot(vel[a].xyz - vel[i + j - a].xyz, n);
@@ -189,11 +189,11 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
         for (var k = 0u; k < slot_count(state[i]); k++) {
             let j = slot_other[i * SLOTS + k];
             let a = min(i, j);
-            let n = normalize(pos[a].xyz - pos[i + j - a].xyz);
+            let n = direction(pos[a].xyz - pos[i + j - a].xyz);
             let total = slot_impulse[i * SLOTS + k];
             let on_i = select(-1.0, 1.0, i == a) * (total.w * n + total.xyz);
             dv += on_i * im;
-            dw += cross(r * normalize(pos[j].xyz - p), on_i) * inv_inertia(im, r);
+            dw += cross(r * direction(pos[j].xyz - p), on_i) * inv_inertia(im, r);
         }
         for (var axis = 0u; axis < 3u; axis++) {
             if touches_wall(state[i], axis) {
@@ -206,7 +206,7 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let b = body_of[i];
         if b != NONE {
-            let n = normalize(p - bodies[b].sphere.xyz);
+            let n = direction(p - bodies[b].sphere.xyz);
             dv += body_impulse[i].w * n * im;
         }
     }

@@ -96,7 +96,7 @@ fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let b = body_of[i];
         if b != NONE && body_impulse[i].w > 0.0 && bodies[b].info.x != FIREBALL {
-            let n = normalize(pos[i].xyz - bodies[b].sphere.xyz);
+            let n = direction(pos[i].xyz - bodies[b].sphere.xyz);
             if -dot(vel_start[i].xyz, n) > events_above {
                 set_color(i, bodies[b].info.z);
             }

@@ -1,7 +1,8 @@
 // What leaves the step: each tumbler's push from the balls, summed in a
 // fixed order (no float atomics), and the instances the renderer draws.
 
-var<workgroup> push_impulse: array<vec3<f32>, 256>;
+// Impulse, and the mass of the balls that pushed.
+var<workgroup> push_impulse: array<vec4<f32>, 256>;
 var<workgroup> push_moment: array<vec3<f32>, 256>;
 
 // One workgroup a tumbler: its threads walk the cells around its spheres
@@ -23,7 +24,7 @@ fn sum_tumbler_push(
             origin = bodies[b].origin.xyz;
         }
     }
-    var impulse = vec3<f32>(0.0);
+    var impulse = vec4<f32>(0.0);
     var moment = vec3<f32>(0.0);
     if lo.x <= hi.x {
         let c0 = cell_coords(lo);
@@ -38,10 +39,13 @@ fn sum_tumbler_push(
                 if b == NONE || bodies[b].info.x != t {
                     continue;
                 }
-                let n = normalize(pos[i].xyz - bodies[b].sphere.xyz);
+                if body_impulse[i].w <= 0.0 {
+                    continue;
+                }
+                let n = direction(pos[i].xyz - bodies[b].sphere.xyz);
                 let on_tumbler = -body_impulse[i].w * n;
                 let point = bodies[b].sphere.xyz + n * bodies[b].sphere.w;
-                impulse += on_tumbler;
+                impulse += vec4<f32>(on_tumbler, 1.0 / vel[i].w);
                 moment += cross(point - origin, on_tumbler);
             }
         }
@@ -57,7 +61,7 @@ fn sum_tumbler_push(
         workgroupBarrier();
     }
     if lid == 0u {
-        tumbler_push[2u * t] = vec4<f32>(push_impulse[0], 0.0);
+        tumbler_push[2u * t] = push_impulse[0];
         tumbler_push[2u * t + 1u] = vec4<f32>(push_moment[0], 0.0);
     }
 }

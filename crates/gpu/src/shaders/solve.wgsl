@@ -7,6 +7,9 @@
 // to the bit and momentum is kept. `apply_deltas` then moves every ball's
 // velocity on at once.
 
+// Balls' weights a tumbler may hold up through one ball.
+const BODY_WEIGHTS: f32 = 4.0;
+
 struct PairImpulse {
     // The impulse on the lower-numbered ball (the other gets its opposite).
     impulse: vec3<f32>,
@@ -69,7 +72,7 @@ fn solve_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
             slot_impulse[i * SLOTS + k] = pair.total;
             change = -pair.impulse;
         }
-        let towards_other = normalize(pos[j].xyz - p);
+        let towards_other = direction(pos[j].xyz - p);
         dv += change * im;
         dw += cross(r * towards_other, change) * ii;
     }
@@ -100,11 +103,19 @@ fn solve_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         let d = p - body.sphere.xyz;
         let n = d / max(length(d), 1e-9);
         let gap = length(d) - r - body.sphere.w;
-        let vb = body_point_velocity(body, body.sphere.xyz + n * body.sphere.w);
+        let point = body.sphere.xyz + n * body.sphere.w;
+        let vb = body_point_velocity(body, point);
         let total = body_impulse[i];
         let approach = -dot(vel_start[i].xyz - vb, n);
         let goal = target_speed(approach, gap, params.more.y);
-        let normal = max(0.0, total.w + share * (goal - dot(vel[i].xyz - vb, n)) / im);
+        // The tumbler stands still within the step, but the push is shared
+        // as if it gave way: its effective mass at the point counts.
+        let k = im + body_inverse_mass(body, point, n);
+        // No more than stops the two meeting (a bounce at most) and holds up
+        // a few balls' weight: a ball wedged between a tumbler and a wall
+        // cannot be squeezed into an ever larger push back.
+        let most = ((1.0 + params.more.y) * max(approach, 0.0) + BODY_WEIGHTS * params.room_max.w * dt()) / k;
+        let normal = clamp(total.w + share * (goal - dot(vel[i].xyz - vb, n)) / k, 0.0, most);
         body_impulse[i] = vec4<f32>(0.0, 0.0, 0.0, normal);
         dv += (normal - total.w) * n * im;
     }

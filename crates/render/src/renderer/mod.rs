@@ -167,6 +167,9 @@ pub struct Renderer {
     tumbler: GpuMesh,
     instances: InstanceBuffer<Instance>,
     balls: InstanceBuffer<BallInstance>,
+    /// This frame's balls where the GPU engine wrote them (see
+    /// [`crate::view::GpuBallBuffer`]); the frame then draws from it.
+    gpu_balls: Option<crate::view::GpuBallBuffer>,
     /// The shadow faces' own lists: each ball and tumbler once for every
     /// face it casts into.
     shadow_balls: InstanceBuffer<BallInstance>,
@@ -262,6 +265,7 @@ impl Renderer {
             tumbler: GpuMesh::upload(device, "tumbler", tumbler_mesh),
             instances: InstanceBuffer::new(device, "instances"),
             balls: InstanceBuffer::new(device, "balls"),
+            gpu_balls: None,
             shadow_balls: InstanceBuffer::new(device, "shadow balls"),
             shadow_tumblers: InstanceBuffer::new(device, "shadow tumblers"),
             lines: InstanceBuffer::new(device, "debug lines"),
@@ -311,8 +315,13 @@ impl Renderer {
         self.ensure_targets(gpu, width, height);
         let ranges = instances::fill_scene(&mut self.instances.items, view);
         self.instances.upload(gpu);
-        instances::fill_balls(&mut self.balls.items, view);
-        self.balls.upload(gpu);
+        self.gpu_balls = view.gpu_balls.clone();
+        if self.gpu_balls.is_some() {
+            self.balls.items.clear();
+        } else {
+            instances::fill_balls(&mut self.balls.items, view);
+            self.balls.upload(gpu);
+        }
         self.lines.items.clear();
         self.lines.items.extend_from_slice(&view.debug_lines);
         self.lines.items.extend_from_slice(&view.debug_lines_over);
@@ -341,9 +350,9 @@ impl Renderer {
             });
         let mut draw_calls = 0;
         if self.settings.shadows {
-            let culled = self
-                .settings
-                .cull_shadow_faces
+            // Balls on the GPU are not listed face by face: that would read
+            // them back.
+            let culled = (self.settings.cull_shadow_faces && self.gpu_balls.is_none())
                 .then(|| self.sort_shadow_casters(gpu, view, &ranges));
             draw_calls += self.shadow_pass(&mut encoder, &ranges, culled.as_ref(), timed);
         }
@@ -423,6 +432,15 @@ impl Renderer {
         }
     }
 
+    /// Where this frame's balls are drawn from: the GPU engine's buffer, or
+    /// the renderer's own.
+    fn ball_source(&self) -> (&wgpu::Buffer, std::ops::Range<u32>) {
+        match &self.gpu_balls {
+            Some(gpu) => (&gpu.buffer, 0..gpu.count),
+            None => (&self.balls.buffer, self.balls.range()),
+        }
+    }
+
     /// Lists the balls and tumblers face by face, each in the faces it can
     /// cast into (see [`shadow::faces_reached`]), and uploads the lists.
     fn sort_shadow_casters(&mut self, gpu: &Gpu, view: &SceneView, ranges: &Ranges) -> FaceRanges {
@@ -465,7 +483,7 @@ impl Renderer {
     ) -> u32 {
         let (balls, tumblers) = match culled {
             Some(_) => (&self.shadow_balls.buffer, &self.shadow_tumblers.buffer),
-            None => (&self.balls.buffer, &self.instances.buffer),
+            None => (self.ball_source().0, &self.instances.buffer),
         };
         let mut draw_calls = 0;
         for face in 0..6 {
@@ -492,7 +510,7 @@ impl Renderer {
             pass.set_bind_group(0, &self.shadow_cube.face_bind_groups[face], &[]);
             pass.set_vertex_buffer(1, balls.slice(..));
             pass.set_pipeline(&self.pipelines.ball_shadow);
-            let ball_range = culled.map_or(self.balls.range(), |c| c.balls[face].clone());
+            let ball_range = culled.map_or(self.ball_source().1, |c| c.balls[face].clone());
             draw_calls += draw(&mut pass, &self.quad, ball_range);
             pass.set_vertex_buffer(1, tumblers.slice(..));
             pass.set_pipeline(&self.pipelines.shadow);
@@ -548,9 +566,10 @@ impl Renderer {
         pass.set_pipeline(&self.pipelines.lit);
         draw_calls += draw(&mut pass, &self.quad, ranges.room.clone());
         draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
-        pass.set_vertex_buffer(1, self.balls.buffer.slice(..));
+        let (balls, ball_range) = self.ball_source();
+        pass.set_vertex_buffer(1, balls.slice(..));
         pass.set_pipeline(&self.pipelines.ball);
-        draw_calls += draw(&mut pass, &self.quad, self.balls.range());
+        draw_calls += draw(&mut pass, &self.quad, ball_range);
         pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
         // ... the debug views' lines over what is lit ...
         let all_lines = self.lines.items.len() as u32;

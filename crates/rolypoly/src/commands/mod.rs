@@ -8,6 +8,7 @@ use anyhow::Context;
 use rolypoly_physics::World;
 
 use crate::cli::{Cli, Command};
+use crate::engine::Engine;
 use crate::scene::{self, BUILTIN_ORIGIN};
 use crate::simulation::Simulation;
 use crate::{clip, trace};
@@ -36,21 +37,33 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
     let seed = scene_args.seed;
     let mut world = World::new(scene.world.clone(), seed)
         .with_context(|| format!("cannot build {scene_name}"))?;
+    let gpu = scene.engine == Engine::Gpu;
     match &cli.command {
+        None if gpu => anyhow::bail!(
+            "--engine gpu: the window does not run the GPU engine yet; `simulate`, `render` and \
+             `record` do, and the window runs with --engine cpu"
+        ),
         None => run::window(world, scene, path, seed, &cli.window),
-        Some(Command::Simulate(args)) => {
-            simulate::simulate(&mut world, &scene_name, args, seed, scene.world.solver.dt)
-        }
+        Some(Command::Simulate(args)) => simulate::simulate(
+            &mut world,
+            &scene_name,
+            args,
+            seed,
+            scene.world.solver.dt,
+            gpu,
+        ),
         Some(Command::Render(args)) => render::render(
-            &mut Simulation::new(world, scene.effects, seed),
+            Simulation::new(world, scene.effects, seed),
             &args.frame.effects.apply(&scene.light),
             scene.quality,
+            gpu,
             args,
         ),
         Some(Command::Record(args)) => record::record(
-            &mut Simulation::new(world, scene.effects, seed),
+            Simulation::new(world, scene.effects, seed),
             &args.frame.effects.apply(&scene.light),
             scene.quality,
+            gpu,
             args,
         ),
         Some(Command::Replay(args)) => replay::replay(args, &cli.window),

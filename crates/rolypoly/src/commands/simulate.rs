@@ -6,20 +6,29 @@ use std::io::{self, Write};
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
+use rolypoly_gpu::{Compute, GpuBalls};
 use rolypoly_physics::{EventKind, World};
 
 use crate::cli::{SimulateArgs, steps_for};
-use crate::trace::{self, TraceError, TraceWriter, event_kind_name};
+use crate::trace::{self, TraceWriter, event_kind_name};
 
 /// `rolypoly simulate` on `world`: its steps, a trace if asked for, and
-/// the summary.
+/// the summary. With `gpu`, its balls are stepped by the GPU engine on the
+/// best adapter there is.
 pub fn simulate(
     world: &mut World,
     scene_name: &str,
     args: &SimulateArgs,
     seed: u64,
     dt: f64,
+    gpu: bool,
 ) -> anyhow::Result<()> {
+    let mut balls = if gpu {
+        let compute = Compute::headless()?;
+        Some(GpuBalls::on_compute(&compute, world)?)
+    } else {
+        None
+    };
     let steps = match (args.length.steps, args.length.seconds) {
         (Some(steps), _) => steps,
         (None, Some(seconds)) => steps_for(seconds, dt),
@@ -34,12 +43,18 @@ pub fn simulate(
     };
     match &args.trace {
         None => {
-            let summary = run::<io::Sink>(world, scene_name, &options, None)?;
+            let summary = run::<io::Sink>(world, balls.as_mut(), scene_name, &options, None)?;
             print_summary(&summary)
         }
         Some(path) => {
             let mut writer = trace::create(path)?;
-            let summary = run(world, scene_name, &options, Some(&mut writer))?;
+            let summary = run(
+                world,
+                balls.as_mut(),
+                scene_name,
+                &options,
+                Some(&mut writer),
+            )?;
             writer.finish()?;
             // Standard output carries the trace itself; keep it pure JSON Lines.
             if trace::is_stdout(path) {
@@ -122,10 +137,11 @@ fn event_index(kind: &EventKind) -> usize {
 /// last step, each state line carrying the events since the previous one.
 pub fn run<W: Write>(
     world: &mut World,
+    mut gpu: Option<&mut GpuBalls>,
     scene: &str,
     options: &Options,
     mut trace: Option<&mut TraceWriter<W>>,
-) -> Result<Summary, TraceError> {
+) -> anyhow::Result<Summary> {
     let started = Instant::now();
     let every = options.every.max(1);
     if options.fireball {
@@ -133,7 +149,7 @@ pub fn run<W: Write>(
     }
     if let Some(trace) = trace.as_deref_mut() {
         trace.scene(world, options.seed)?;
-        trace.state(world, &[])?;
+        with_balls(world, gpu.as_deref(), |world| trace.state(world, &[]))??;
     }
 
     let mut events = [0u64; 6];
@@ -141,13 +157,17 @@ pub fn run<W: Write>(
     for step in 1..=options.steps {
         world.step();
         pending.extend(world.drain_events());
+        if let Some(balls) = gpu.as_deref_mut() {
+            balls.step(world)?;
+            balls.take_catches(&mut pending);
+        }
         for event in &pending {
             events[event_index(&event.kind)] += 1;
         }
         match trace.as_deref_mut() {
             Some(trace) => {
                 if step % every == 0 || step == options.steps {
-                    trace.state(world, &pending)?;
+                    with_balls(world, gpu.as_deref(), |world| trace.state(world, &pending))??;
                     pending.clear();
                 }
             }
@@ -155,7 +175,26 @@ pub fn run<W: Write>(
         }
     }
 
-    Ok(summarize(world, scene, options, started.elapsed(), events))
+    let wall = started.elapsed();
+    with_balls(world, gpu.as_deref(), |world| {
+        summarize(world, scene, options, wall, events)
+    })
+}
+
+/// `report` on `world`, with the GPU engine's balls (if it steps them)
+/// read back and put into the world for the while.
+fn with_balls<T>(
+    world: &mut World,
+    gpu: Option<&GpuBalls>,
+    report: impl FnOnce(&World) -> T,
+) -> anyhow::Result<T> {
+    let Some(balls) = gpu else {
+        return Ok(report(world));
+    };
+    world.put_balls(balls.read()?.to_balls());
+    let out = report(world);
+    world.take_balls();
+    Ok(out)
 }
 
 fn summarize(

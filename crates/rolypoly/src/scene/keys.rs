@@ -6,6 +6,7 @@
 //! `docs/scenes.md` all walk this table; a key's default is the value
 //! [`Scene::default`] holds.
 
+use crate::engine::Engine;
 use glam::DVec3;
 use rolypoly_physics::Rgb;
 use rolypoly_render::QualityChoice;
@@ -398,6 +399,20 @@ pub static KEYS: &[Key] = &[
         NextFrame,
         Choice("quality"),
         "How finely frames are drawn; auto starts high and steps down while the window is slow; render and record draw auto as high (--quality).",
+    ),
+    key_of(
+        "solver.engine",
+        Word(WordPlace {
+            names: &Engine::NAMES,
+            read: |scene| scene.engine.name(),
+            write: |scene, name| {
+                scene.engine = Engine::from_name(name).unwrap_or(scene.engine);
+            },
+        }),
+        Any,
+        Restart,
+        Choice("engine"),
+        "Which engine steps the balls: cpu (the reference) or gpu (compute shaders on the graphics adapter; an adapter without them is an error) (--engine).",
     ),
     key_of(
         "balls.count",

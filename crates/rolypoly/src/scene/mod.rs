@@ -22,6 +22,7 @@
 use std::fmt;
 use std::path::Path;
 
+use crate::engine::Engine;
 use rolypoly_fx::EffectsConfig;
 use rolypoly_physics::WorldConfig;
 use rolypoly_render::{LightConfig, QualityChoice};
@@ -124,6 +125,8 @@ pub struct Scene {
     pub light: LightConfig,
     /// How finely frames are drawn (`render.quality`).
     pub quality: QualityChoice,
+    /// Which engine steps the balls (`solver.engine`).
+    pub engine: Engine,
 }
 
 /// Settings given on the command line; they win over the scene file and are
@@ -134,6 +137,8 @@ pub struct Overrides {
     pub balls: Option<usize>,
     /// `gravity`, from `--gravity`.
     pub gravity: Option<f64>,
+    /// `solver.engine`, from `--engine`.
+    pub engine: Option<Engine>,
 }
 
 /// Loads the scene at `path` over the default scene, or the default scene
@@ -201,6 +206,12 @@ fn build(source: Option<&str>, origin: &str, overrides: &Overrides) -> Result<Sc
     if let Some(gravity) = overrides.gravity {
         scene.world.gravity = gravity;
         sources.options.insert("gravity".into(), "--gravity".into());
+    }
+    if let Some(engine) = overrides.engine {
+        scene.engine = engine;
+        sources
+            .options
+            .insert("solver.engine".into(), "--engine".into());
     }
     Checker {
         scene: &scene,
