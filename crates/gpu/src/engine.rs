@@ -190,8 +190,12 @@ impl GpuBalls {
         let largest = (0..balls.len())
             .map(|i| balls.radii()[i])
             .fold(config.balls.largest_radius(), f64::max);
-        let cell = CELL_RADII * largest;
         let size = room.max - room.min;
+        // Balls spread thin through a large room get cells about as wide as
+        // the space between them, so that the grid has no more cells than
+        // balls to walk (as the CPU engine's grid).
+        let spacing = (size.element_product() / balls.len().max(1) as f64).cbrt();
+        let cell = (CELL_RADII * largest).max(spacing);
         let dims = (size / cell).ceil().max(DVec3::ONE);
         let cells = (dims.x * dims.y * dims.z) as u64;
         let capacity = balls.len() as u64 + THROW_ROOM;

@@ -7,7 +7,7 @@ use bytemuck::{Pod, Zeroable};
 /// Threads in a workgroup, in every pass (`WORKGROUP` in the WGSL).
 pub const WORKGROUP: u32 = 256;
 /// Contacts a ball keeps with other balls in one step (`SLOTS`).
-pub const SLOTS: u64 = 12;
+pub const SLOTS: u64 = 8;
 /// The most workgroups a dispatch has along one dimension; wider ones
 /// spill into y (`ball_index` in the WGSL).
 pub const MAX_GROUPS: u32 = 65_535;

@@ -53,6 +53,7 @@ impl WindowArgs {
             look_speed: self.look_speed.to_radians(),
             scene_file: scene_file.map(Path::to_path_buf),
             replay_digest: None,
+            replay_from: None,
         }
     }
 }

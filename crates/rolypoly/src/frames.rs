@@ -90,6 +90,16 @@ impl Frames {
             .capture(&sim.view_showing(light, &self.debug), camera)?)
     }
 
+    /// The device the frames are drawn with.
+    pub fn device(&self) -> crate::sandbox::Device {
+        let gpu = &self.snapshot.gpu;
+        crate::sandbox::Device {
+            device: gpu.device.clone(),
+            queue: gpu.queue.clone(),
+            adapter: gpu.adapter.clone(),
+        }
+    }
+
     /// Moves `sim`'s balls to the GPU engine, on the device these frames
     /// are drawn with: they are drawn from where it steps them.
     pub fn move_balls_to_gpu(&self, sim: &mut Simulation) -> anyhow::Result<()> {

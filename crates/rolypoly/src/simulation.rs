@@ -55,6 +55,46 @@ impl Simulation {
         Ok(())
     }
 
+    /// Whether the GPU engine steps the balls.
+    pub fn on_gpu(&self) -> bool {
+        self.gpu.is_some()
+    }
+
+    /// Balls in the world, caught and thrown ones included, on either engine.
+    pub fn ball_count(&self) -> usize {
+        self.gpu_balls()
+            .map_or(self.world.balls().len(), |balls| balls.len())
+    }
+
+    /// Throws a ball from `from` at `velocity` (B), into whichever engine
+    /// steps the balls.
+    pub fn throw_ball(&mut self, from: glam::DVec3, velocity: glam::DVec3) -> Result<(), GpuError> {
+        match &self.gpu {
+            Some(gpu) => {
+                let mut balls = gpu.lock().unwrap_or_else(PoisonError::into_inner);
+                balls.throw_ball(&mut self.world, from, velocity)?;
+            }
+            None => {
+                self.world.throw_ball(from, velocity);
+            }
+        }
+        Ok(())
+    }
+
+    /// The balls anew (I), in whichever engine steps them.
+    pub fn reset_balls(&mut self) -> Result<(), GpuError> {
+        match &self.gpu {
+            Some(gpu) => {
+                let mut balls = gpu.lock().unwrap_or_else(PoisonError::into_inner);
+                balls.restart(&mut self.world)
+            }
+            None => self
+                .world
+                .reset_balls()
+                .map_err(|e| GpuError::Build(e.to_string())),
+        }
+    }
+
     /// The GPU engine, where it steps the balls.
     pub fn gpu_balls(&self) -> Option<MutexGuard<'_, GpuBalls>> {
         self.gpu

@@ -3,7 +3,7 @@
 
 const WORKGROUP: u32 = 256u;
 // Contacts a ball keeps with other balls in one step: its nearest.
-const SLOTS: u32 = 12u;
+const SLOTS: u32 = 8u;
 const NONE: u32 = 0xffffffffu;
 // A ball's state word: bit 0 alive; bit 1 in the solver (it has a ball or
 // a body within reach); bits 4-7 how many balls it touches; bits 8-10 which

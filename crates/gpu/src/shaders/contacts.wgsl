@@ -15,8 +15,8 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     // Last step's contacts, to start from their impulses.
     let old = state[i];
     let old_slots = select(0u, slot_count(old), (old & SOLVED) != 0u);
-    var old_ball: array<u32, 12>;
-    var old_impulse: array<vec4<f32>, 12>;
+    var old_ball: array<u32, SLOTS>;
+    var old_impulse: array<vec4<f32>, SLOTS>;
     for (var k = 0u; k < old_slots; k++) {
         old_ball[k] = slot_other[i * SLOTS + k];
         old_impulse[k] = slot_impulse[i * SLOTS + k];
@@ -46,8 +46,8 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     let step = dt();
 
     // The nearest balls, nearest first (ties: lower number first).
-    var near_gap: array<f32, 12>;
-    var near_ball: array<u32, 12>;
+    var near_gap: array<f32, SLOTS>;
+    var near_ball: array<u32, SLOTS>;
     var found = 0u;
     let home = cell_coords(p);
     for (var dz = -1; dz <= 1; dz++) {

@@ -39,10 +39,6 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
         .with_context(|| format!("cannot build {scene_name}"))?;
     let gpu = scene.engine == Engine::Gpu;
     match &cli.command {
-        None if gpu => anyhow::bail!(
-            "--engine gpu: the window does not run the GPU engine yet; `simulate`, `render` and \
-             `record` do, and the window runs with --engine cpu"
-        ),
         None => run::window(world, scene, path, seed, &cli.window),
         Some(Command::Simulate(args)) => simulate::simulate(
             &mut world,

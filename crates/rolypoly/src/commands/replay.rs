@@ -34,13 +34,14 @@ pub fn replay(args: &ReplayArgs, window: &WindowArgs) -> anyhow::Result<()> {
             args.log.display()
         );
     }
-    // The world as it was when R was pressed.
-    sandbox.replay_until(log.from_tick);
     match &args.out {
         Some(out) => clip(&mut sandbox, &log, args, out),
         None => {
             let mut options = window.options(log.seed, None);
             options.replay_digest = Some(log.end_digest.clone());
+            // The world as it was when R was pressed, once the window has
+            // its device.
+            options.replay_from = Some(log.from_tick);
             crate::window::run(sandbox, options)
         }
     }
@@ -55,6 +56,9 @@ fn clip(
     let config = sandbox.world().config().clone();
     let quality = sandbox.scene().quality;
     let mut frames = Frames::new(&config, quality, &args.frame, args.clip.size)?;
+    sandbox.use_device(frames.device())?;
+    // The world as it was when R was pressed.
+    sandbox.replay_until(log.from_tick);
     let dt = config.solver.dt;
     let seconds = (log.to_tick - log.from_tick) as f64 * dt;
     if seconds > MAX_CLIP_SECONDS {

@@ -92,6 +92,9 @@ pub enum Refused {
     /// The settings break the scene file's rules.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The GPU engine could not take the balls.
+    #[error(transparent)]
+    Gpu(#[from] rolypoly_gpu::GpuError),
 }
 
 /// Where the camera is and looks.

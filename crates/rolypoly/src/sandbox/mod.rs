@@ -10,6 +10,7 @@ use std::collections::VecDeque;
 use glam::{DVec3, Vec3};
 use rolypoly_physics::{BuildError, World};
 
+use crate::engine::Engine;
 use crate::scene::{self, Scene, SceneError};
 use crate::simulation::Simulation;
 
@@ -68,8 +69,23 @@ pub struct Sandbox {
     script: Option<(VecDeque<Timed>, u64)>,
     /// The camera as the last recorded input put it (replays follow it).
     pub view_pose: Option<CameraPose>,
-    /// The last 30 s, to go back to (see [`rewind`]).
+    /// The last 30 s, to go back to (see [`rewind`]); kept only while the
+    /// CPU engine steps the balls.
     history: History,
+    /// The device the GPU engine steps the balls on, once there is one
+    /// (see [`Sandbox::use_device`]).
+    device: Option<Device>,
+}
+
+/// A device, its queue and adapter: where the GPU engine runs.
+#[derive(Clone)]
+pub struct Device {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// Its adapter.
+    pub adapter: wgpu::Adapter,
 }
 
 impl Sandbox {
@@ -99,9 +115,41 @@ impl Sandbox {
             script: None,
             view_pose: None,
             history: History::default(),
+            device: None,
         };
         sandbox.history.begin(sandbox.snapshot());
         sandbox
+    }
+
+    /// Gives the sandbox the device to draw with; from here on a scene
+    /// whose `solver.engine` is gpu has its balls stepped there, this one
+    /// at once.
+    pub fn use_device(&mut self, device: Device) -> Result<(), Refused> {
+        self.device = Some(device);
+        if self.scene.engine == Engine::Gpu && !self.sim.on_gpu() {
+            self.move_balls_to_gpu()?;
+        }
+        Ok(())
+    }
+
+    /// A simulation of `world` for the scene now, its balls on the GPU
+    /// where the scene says so and a device is known.
+    fn simulation(&self, world: World) -> Result<Simulation, Refused> {
+        let mut sim = Simulation::new(world, self.scene.effects.clone(), self.seed);
+        if let (Engine::Gpu, Some(d)) = (self.scene.engine, &self.device) {
+            sim.move_balls_to_gpu(&d.device, &d.queue, &d.adapter)?;
+        }
+        Ok(sim)
+    }
+
+    fn move_balls_to_gpu(&mut self) -> Result<(), Refused> {
+        if let Some(d) = &self.device {
+            self.sim
+                .move_balls_to_gpu(&d.device, &d.queue, &d.adapter)?;
+            // What came before the balls moved cannot be gone back to.
+            self.history.begin(self.snapshot());
+        }
+        Ok(())
     }
 
     /// The toy as it stands now, to go back to.
@@ -147,9 +195,9 @@ impl Sandbox {
                 if !(slowest..=fastest).contains(speed) {
                     return Err(Refused::Speed(*speed));
                 }
-                self.thrown += 1;
                 let velocity = vector(*direction).normalize_or(DVec3::NEG_Z) * *speed;
-                self.sim.world.throw_ball(vector(*from), velocity);
+                self.sim.throw_ball(vector(*from), velocity)?;
+                self.thrown += 1;
             }
             Input::Grab { tumbler, point } => self.sim.world.grab(*tumbler, vector(*point)),
             Input::GrabBall { ball } => self.sim.world.hold_ball(*ball),
@@ -165,7 +213,14 @@ impl Sandbox {
             Input::Load { name, scene } => {
                 let scene = scene::parse_scene(scene, name)?;
                 let world = World::new(scene.world.clone(), self.seed)?;
-                self.sim = Simulation::new(world, scene.effects.clone(), self.seed);
+                let previous = std::mem::replace(&mut self.scene, scene.clone());
+                self.sim = match self.simulation(world) {
+                    Ok(sim) => sim,
+                    Err(e) => {
+                        self.scene = previous;
+                        return Err(e);
+                    }
+                };
                 self.scene_name.clone_from(name);
                 self.thrown = 0;
                 // A new line begins: what came before no longer matters.
@@ -241,19 +296,16 @@ impl Sandbox {
 
     /// I: the balls anew, thrown balls gone; the whole world built anew
     /// from the settings when some wait for it.
-    pub fn restart(&mut self) -> Result<(), BuildError> {
-        match self.apply(Input::Restart) {
-            Err(Refused::Build(e)) => Err(e),
-            _ => Ok(()),
-        }
+    pub fn restart(&mut self) -> Result<(), Refused> {
+        self.apply(Input::Restart)
     }
 
-    fn rebuild_or_reset(&mut self) -> Result<(), BuildError> {
-        if self.restart_pending() {
+    fn rebuild_or_reset(&mut self) -> Result<(), Refused> {
+        if self.restart_pending() || self.sim.on_gpu() != (self.scene.engine == Engine::Gpu) {
             let world = World::new(self.scene.world.clone(), self.seed)?;
-            self.sim = Simulation::new(world, self.scene.effects.clone(), self.seed);
+            self.sim = self.simulation(world)?;
         } else {
-            self.sim.world.reset_balls()?;
+            self.sim.reset_balls()?;
         }
         self.thrown = 0;
         Ok(())
@@ -278,7 +330,7 @@ impl Sandbox {
         };
         match self.apply(input) {
             Err(Refused::Throw(refused)) => Err(refused),
-            _ => Ok(self.sim.world.balls().len() - 1),
+            _ => Ok(self.sim.ball_count() - 1),
         }
     }
 
@@ -309,7 +361,8 @@ impl Sandbox {
         self.ticks += 1;
         self.history.furthest = self.history.furthest.max(self.ticks);
         let (every, keep) = rewind::spacing(self.sim.world.config().solver.dt);
-        if self.ticks.is_multiple_of(every) {
+        // The GPU engine's balls are not copied back to the CPU to keep.
+        if self.ticks.is_multiple_of(every) && !self.sim.on_gpu() {
             let snapshot = self.snapshot();
             self.history.keep(snapshot, keep);
         }
@@ -449,9 +502,15 @@ impl Sandbox {
     /// the same run.
     pub fn digest(&self) -> String {
         let w = &self.sim.world;
+        // The GPU engine's balls, read back: a digest is taken once a run.
+        let gpu_balls = self
+            .sim
+            .gpu_balls()
+            .map(|balls| balls.read().map(|s| s.to_balls()).ok());
         let state = format!(
-            "{:?}{:?}{:?}{}{}",
+            "{:?}{:?}{:?}{:?}{}{}",
             w.balls(),
+            gpu_balls,
             w.tumblers(),
             w.fireball(),
             w.time().to_bits(),

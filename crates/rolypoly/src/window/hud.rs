@@ -23,6 +23,9 @@ pub struct HudState {
     pub rewound: f64,
     pub balls_alive: usize,
     pub balls_total: usize,
+    /// Which engine steps the balls, and where: "cpu", or "gpu on ADAPTER"
+    /// (whose balls stay there, so that only their count is shown).
+    pub engine: String,
     pub particles: (usize, usize),
     pub dropped: u64,
     pub paused: bool,
@@ -69,6 +72,7 @@ impl HudState {
             rewound: 0.0,
             balls_alive: balls,
             balls_total: balls,
+            engine: "cpu".into(),
             particles: (0, 0),
             dropped: 0,
             paused: false,
@@ -228,7 +232,14 @@ impl Hud {
                     if let Some(held) = &s.held {
                         ui.label(held);
                     }
-                    ui.label(format!("balls {} of {}", s.balls_alive, s.balls_total));
+                    if s.engine == "cpu" {
+                        ui.label(format!(
+                            "balls {} of {}, engine cpu",
+                            s.balls_alive, s.balls_total
+                        ));
+                    } else {
+                        ui.label(format!("{} balls, engine {}", s.balls_total, s.engine));
+                    }
                     ui.label(format!(
                         "particles {} of {} ({} dropped)",
                         s.particles.0, s.particles.1, s.dropped

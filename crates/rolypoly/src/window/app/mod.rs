@@ -67,6 +67,9 @@ pub struct WindowOptions {
     /// For a replay: the digest of the recording's end state, to check the
     /// replay's against.
     pub replay_digest: Option<String>,
+    /// In replays, the tick to play up to as soon as the window's device
+    /// is known: a recording on the GPU engine runs there from its start.
+    pub replay_from: Option<u64>,
 }
 
 /// Opens the window on `sandbox` and runs until it is closed.
@@ -263,6 +266,12 @@ impl App {
             self.sandbox.playback.frozen(),
             self.mode == MouseMode::Grab,
         );
+        if let Some(balls) = sim.gpu_balls() {
+            self.hud_state.balls_total = balls.len();
+            self.hud_state.engine = format!("gpu on {}", balls.adapter());
+        } else {
+            self.hud_state.engine = "cpu".into();
+        }
         self.hud_state.time_scale = self.sandbox.playback.scale();
         self.hud_state.held = held_facts(&sim.world);
         let furthest = self.sandbox.timeline().1;

@@ -87,6 +87,14 @@ impl App {
             &self.paint,
         );
         let hud = Hud::new(&window, &gpu, format);
+        self.sandbox.use_device(crate::sandbox::Device {
+            device: gpu.device.clone(),
+            queue: gpu.queue.clone(),
+            adapter: gpu.adapter.clone(),
+        })?;
+        if let Some(tick) = self.options.replay_from.take() {
+            self.sandbox.replay_until(tick);
+        }
         self.cursor = Vec2::new(config.width as f32, config.height as f32) * 0.5;
         self.log.say(
             "ready",
