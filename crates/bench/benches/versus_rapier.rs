@@ -18,8 +18,15 @@
 //! how much the machine moved it. After the 10k and 100k pits it says
 //! whether the engine's targets for them were met, and with friction
 //! whether both engines had 99 % of the balls at rest at 10 s.
+//!
+//! The GPU engine (`rolypoly-gpu`, on the adapter named at the top) runs as
+//! a third column, in the same turns; its turns are timed to the end of
+//! the GPU's work. Rapier sits out pits of more than 100 000 balls. After
+//! each pit the GPU's time a step is split by stage, by timestamp queries
+//! where the adapter has them.
 
 use glam::DVec3;
+use rolypoly_bench::gpu_pit::GpuPit;
 use rolypoly_bench::ours::OurPit;
 use rolypoly_bench::pit::{Pit, PitEngine};
 use rolypoly_bench::quality::{Quality, measure};
@@ -67,15 +74,15 @@ struct Timing<'a> {
 }
 
 impl Timing<'_> {
-    /// Steps `steps` times, timing only the steps, then measures quality.
+    /// Steps `steps` times, timing only the steps (to the end of the
+    /// work they queued), then measures quality.
     fn advance(&mut self, pit: &Pit, steps: usize, read: &mut (Vec<DVec3>, Vec<DVec3>)) {
-        let mut turn = 0.0;
+        let start = Instant::now();
         for _ in 0..steps {
-            let start = Instant::now();
             self.engine.step();
-            turn += start.elapsed().as_secs_f64();
         }
-        self.turns.push(turn);
+        self.engine.finish();
+        self.turns.push(start.elapsed().as_secs_f64());
         self.engine.read(&mut read.0, &mut read.1);
         self.last = measure(pit, &read.0, &read.1);
         self.worst = self.worst.worst(self.last);
@@ -90,22 +97,25 @@ impl Timing<'_> {
 /// there when the run lasts that long, else both engines are stepped on
 /// to it after the run, untimed.
 fn run_in_turn(
-    engines: [&mut dyn PitEngine; 2],
+    engines: Vec<&mut dyn PitEngine>,
     pit: &Pit,
     seconds: f64,
     rest_at: Option<f64>,
-) -> [Run; 2] {
+) -> Vec<Run> {
     let steps = ((seconds / pit.dt).round() as usize).max(1);
     let turn = ((0.5 / pit.dt).round() as usize).max(1);
     let rest_at = rest_at.map(|t| ((t / pit.dt).round() as usize).max(1));
     let mut read = (Vec::new(), Vec::new());
-    let mut timings = engines.map(|engine| Timing {
-        engine,
-        turns: Vec::new(),
-        worst: Quality::default(),
-        last: Quality::default(),
-        rest_at: None,
-    });
+    let mut timings: Vec<Timing> = engines
+        .into_iter()
+        .map(|engine| Timing {
+            engine,
+            turns: Vec::new(),
+            worst: Quality::default(),
+            last: Quality::default(),
+            rest_at: None,
+        })
+        .collect();
     let mut done = 0;
     while done < steps {
         let mut now = turn.min(steps - done);
@@ -132,13 +142,16 @@ fn run_in_turn(
         }
     }
     // The last turn ends the run: its quality is the end's.
-    timings.map(|t| Run {
-        steps_per_second: steps as f64 / t.turns.iter().sum::<f64>(),
-        worst: t.worst,
-        end: t.last,
-        rest_at: t.rest_at,
-        turns: t.turns,
-    })
+    timings
+        .into_iter()
+        .map(|t| Run {
+            steps_per_second: steps as f64 / t.turns.iter().sum::<f64>(),
+            worst: t.worst,
+            end: t.last,
+            rest_at: t.rest_at,
+            turns: t.turns,
+        })
+        .collect()
 }
 
 /// The ratio of the engines' speeds in each turn: lowest, median and
@@ -176,13 +189,14 @@ fn print_header() {
     );
 }
 
-fn print_row(balls: usize, name: &str, r: &Run, ratio: f64) {
+fn print_row(balls: usize, name: &str, r: &Run, ratio: Option<f64>) {
+    let ratio = ratio.map_or("-".into(), |x| format!("{x:.2}"));
     let rest_at = match &r.rest_at {
         Some(q) => format!("{:.1}%", 100.0 * resting_share(q, balls)),
         None => "-".into(),
     };
     println!(
-        "{:>7} {:<14} {:>9.1} {:>13.3e} {:>7.2} {:>13.2} {:>8} {:>12.3} {:>8} {:>8.1}% {:>10}",
+        "{:>7} {:<14} {:>9.1} {:>13.3e} {:>7} {:>13.2} {:>8} {:>12.3} {:>8} {:>8.1}% {:>10}",
         balls,
         name,
         r.steps_per_second,
@@ -227,6 +241,34 @@ fn target_for(balls: usize, friction: f64, ours: &Run, rapier: &Run, ratio: f64)
         _ => None,
     }
 }
+
+/// The targets the GPU engine is held to on an H100-class GPU: 100 000
+/// balls at 600 steps per second and a million at 60, with at most 10 mm
+/// of overlap, no escapes and the balls at rest at 10 s; and whether this
+/// run, on `adapter`, met them.
+fn gpu_target_for(balls: usize, gpu: &Run, adapter: &str) -> Option<String> {
+    let speed = match balls {
+        100_000 => 600.0,
+        1_000_000 => 60.0,
+        _ => return None,
+    };
+    let met = gpu.steps_per_second >= speed
+        && gpu.worst.max_penetration <= 0.010
+        && gpu.worst.escapes == 0
+        && gpu
+            .rest_at
+            .as_ref()
+            .is_none_or(|q| resting_share(q, balls) >= RESTING_TARGET);
+    Some(format!(
+        "GPU target (on an H100-class GPU): at least {speed} steps/s, overlap at most 10 mm, \
+         no escapes: {} on {adapter} ({:.1})",
+        if met { "met" } else { "NOT met" },
+        gpu.steps_per_second
+    ))
+}
+
+/// The largest pit Rapier runs: beyond, it would take hours.
+const RAPIER_MOST_BALLS: usize = 100_000;
 
 /// With friction between balls, whether both engines had at least
 /// [`RESTING_TARGET`] of the balls at rest at [`REST_AT`], where measured.
@@ -307,9 +349,19 @@ fn main() {
     };
     println!(
         "pit: balls of radius 0.1 m, mass 1 kg, restitution 0.8, wall friction 0.5, \
-         no rolling resistance, dt 1/60 s, {seconds} s simulated; threads, for both engines: {}",
+         no rolling resistance, dt 1/60 s, {seconds} s simulated; threads, for both CPU engines: {}",
         rayon_threads()
     );
+    let compute = match rolypoly_gpu::Compute::headless() {
+        Ok(compute) => {
+            println!("GPU engine on {}", compute.adapter);
+            Some(compute)
+        }
+        Err(e) => {
+            println!("GPU engine: none ({e})");
+            None
+        }
+    };
     println!(
         "overlap: deepest over the run; at rest: every ball slower than {} cm/s at the end; \
          resting: the share of balls that are, at the end and at {REST_AT} s \
@@ -333,18 +385,91 @@ fn main() {
                     std::process::exit(1);
                 }
             };
-            let mut rapier = RapierPit::new(&pit);
-            let name = rapier.name();
+            let mut gpu = match compute.as_ref().map(|c| GpuPit::new(&pit, c)).transpose() {
+                Ok(gpu) => gpu,
+                Err(e) => {
+                    println!("{n:>7} rolypoly-gpu: {e}");
+                    None
+                }
+            };
+            let mut rapier = (n <= RAPIER_MOST_BALLS).then(|| RapierPit::new(&pit));
+            let rapier_name = RapierPit::NAME;
             let rest_at = (seconds >= REST_AT || n <= REST_AT_MOST_BALLS).then_some(REST_AT);
-            let [our_run, rapier_run] =
-                run_in_turn([&mut ours, &mut rapier], &pit, seconds, rest_at);
+            let mut engines: Vec<&mut dyn PitEngine> = vec![&mut ours];
+            if let Some(gpu) = gpu.as_mut() {
+                engines.push(gpu);
+            }
+            if let Some(rapier) = rapier.as_mut() {
+                engines.push(rapier);
+            }
+            let runs = run_in_turn(engines, &pit, seconds, rest_at);
+            let our_run = &runs[0];
+            let gpu_run = gpu.as_ref().map(|_| &runs[1]);
+            let rapier_run = rapier.as_ref().and_then(|_| runs.last());
             let retaken = ours.world().retakes();
-            let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
-            print_row(n, "rolypoly", &our_run, ratio);
-            print_row(n, &name, &rapier_run, 1.0);
+            let over_rapier =
+                |run: &Run| rapier_run.map(|r| run.steps_per_second / r.steps_per_second);
+            print_row(n, "rolypoly", our_run, over_rapier(our_run));
             rows += &format!("{n},rolypoly,{friction},{:.2}\n", our_run.steps_per_second);
-            rows += &format!("{n},{name},{friction},{:.2}\n", rapier_run.steps_per_second);
-            if let Some([lowest, median, highest]) = ratio_by_turn(&our_run, &rapier_run) {
+            if let Some(gpu_run) = gpu_run {
+                print_row(n, "rolypoly-gpu", gpu_run, over_rapier(gpu_run));
+                rows += &format!(
+                    "{n},rolypoly-gpu,{friction},{:.2}\n",
+                    gpu_run.steps_per_second
+                );
+            }
+            if let Some(rapier_run) = rapier_run {
+                print_row(n, rapier_name, rapier_run, Some(1.0));
+                rows += &format!(
+                    "{n},{rapier_name},{friction},{:.2}\n",
+                    rapier_run.steps_per_second
+                );
+            }
+            if let (Some(gpu_run), Some(compute)) = (gpu_run, &compute) {
+                println!(
+                    "{:>7} rolypoly-gpu over rolypoly: {:.2}",
+                    "",
+                    gpu_run.steps_per_second / our_run.steps_per_second
+                );
+                if let Some(target) = gpu_target_for(n, gpu_run, &compute.adapter) {
+                    println!("{:>7} {target}", "");
+                }
+            }
+            if let Some(gpu) = gpu.as_mut() {
+                match gpu.profile(10) {
+                    Ok(Some(stages)) => {
+                        let total: f64 = stages.iter().sum();
+                        let parts: Vec<String> = rolypoly_gpu::Stage::ALL
+                            .iter()
+                            .zip(stages)
+                            .map(|(s, t)| {
+                                format!(
+                                    "{} {:.2} ms ({:.0} %)",
+                                    s.name(),
+                                    1e3 * t,
+                                    100.0 * t / total
+                                )
+                            })
+                            .collect();
+                        println!(
+                            "{:>7} GPU time a step, by timestamps: {:.2} ms: {}",
+                            "",
+                            1e3 * total,
+                            parts.join(", ")
+                        );
+                    }
+                    Ok(None) => println!(
+                        "{:>7} GPU time by stage: the adapter writes no timestamps",
+                        ""
+                    ),
+                    Err(e) => println!("{:>7} GPU time by stage: {e}", ""),
+                }
+            }
+            let Some(rapier_run) = rapier_run else {
+                continue;
+            };
+            let ratio = our_run.steps_per_second / rapier_run.steps_per_second;
+            if let Some([lowest, median, highest]) = ratio_by_turn(our_run, rapier_run) {
                 println!(
                     "{:>7} ratio turn by turn ({} turns): lowest {lowest:.2}, median {median:.2}, \
                      highest {highest:.2}",
@@ -356,11 +481,11 @@ fn main() {
                 "{:>7} rolypoly steps retaken with less warm start: {retaken}",
                 ""
             );
-            if let Some(target) = target_for(n, friction, &our_run, &rapier_run, ratio) {
+            if let Some(target) = target_for(n, friction, our_run, rapier_run, ratio) {
                 println!("{:>7} {target}", "");
             }
             if friction > 0.0
-                && let Some(target) = rest_target(n, &our_run, &rapier_run)
+                && let Some(target) = rest_target(n, our_run, rapier_run)
             {
                 println!("{:>7} {target}", "");
             }

@@ -313,7 +313,7 @@ fn steps_per_second(csv: &str) -> Result<String, String> {
             engines.push(&r.engine);
         }
     }
-    let colors = [RED, BLUE];
+    let colors = [RED, BLUE, GREEN];
     let color_of = |name: &str| {
         let at = engines.iter().position(|&e| e == name).unwrap_or(0);
         colors[at % colors.len()]

@@ -5,6 +5,7 @@
 #![warn(missing_docs)]
 
 pub mod figures;
+pub mod gpu_pit;
 pub mod ours;
 pub mod pit;
 pub mod quality;

@@ -45,8 +45,11 @@ pub struct Pit {
 pub trait PitEngine {
     /// The engine's name, as the table prints it.
     fn name(&self) -> String;
-    /// Advances the pit by one time step.
+    /// Advances the pit by one time step (an engine on another device may
+    /// only have queued it: see [`PitEngine::finish`]).
     fn step(&mut self);
+    /// Waits until every step asked for is done; timed with the steps.
+    fn finish(&mut self) {}
     /// Writes every ball's position and linear velocity, in `Pit::start` order.
     fn read(&self, positions: &mut Vec<DVec3>, velocities: &mut Vec<DVec3>);
 }

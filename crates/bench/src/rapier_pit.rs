@@ -151,9 +151,14 @@ impl RapierPit {
     }
 }
 
+impl RapierPit {
+    /// The engine's name, as the table prints it.
+    pub const NAME: &'static str = "rapier3d 0.36";
+}
+
 impl PitEngine for RapierPit {
     fn name(&self) -> String {
-        "rapier3d 0.36".to_string()
+        Self::NAME.to_string()
     }
 
     fn step(&mut self) {

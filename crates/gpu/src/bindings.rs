@@ -3,6 +3,9 @@
 
 use crate::layout::{Body, Catch, EVENT_CAPACITY, SLOTS};
 
+/// Bindings in the group: the uniform and the storage buffers.
+pub const BINDINGS: u32 = 25;
+
 /// Each buffer, named by what it holds (see `common.wgsl`).
 pub struct Buffers {
     pub params: wgpu::Buffer,
@@ -28,6 +31,8 @@ pub struct Buffers {
     pub tumbler_push: wgpu::Buffer,
     pub events: wgpu::Buffer,
     pub event_count: wgpu::Buffer,
+    pub slot_impact: wgpu::Buffer,
+    pub own_impact: wgpu::Buffer,
 }
 
 /// How many of each the buffers hold.
@@ -112,11 +117,13 @@ impl Buffers {
                 U::STORAGE | U::COPY_SRC,
             ),
             event_count: make("catch count", 16, U::STORAGE | U::COPY_SRC | U::COPY_DST),
+            slot_impact: make("contact impacts", 8 * SLOTS * n, U::STORAGE),
+            own_impact: make("wall and body impacts", 32 * n, U::STORAGE),
         }
     }
 
     /// In binding order.
-    fn in_order(&self) -> [&wgpu::Buffer; 23] {
+    fn in_order(&self) -> [&wgpu::Buffer; BINDINGS as usize] {
         [
             &self.params,
             &self.pos,
@@ -141,13 +148,15 @@ impl Buffers {
             &self.tumbler_push,
             &self.events,
             &self.event_count,
+            &self.slot_impact,
+            &self.own_impact,
         ]
     }
 
     /// The layout: binding 0 the uniform, 17 and 18 read-only, the rest
     /// read and written.
     pub fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-        let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..23)
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..BINDINGS)
             .map(|binding| wgpu::BindGroupLayoutEntry {
                 binding,
                 visibility: wgpu::ShaderStages::COMPUTE,

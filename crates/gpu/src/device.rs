@@ -4,7 +4,7 @@
 use crate::GpuError;
 
 /// Storage buffers the ball passes bind at once (see `bindings.rs`).
-pub const STORAGE_BUFFERS: u32 = 22;
+pub const STORAGE_BUFFERS: u32 = crate::bindings::BINDINGS - 1;
 
 /// An open device, its queue and the adapter's name.
 pub struct Compute {
@@ -23,6 +23,8 @@ pub fn limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
     let has = adapter.limits();
     let mut limits = wgpu::Limits::downlevel_defaults().using_resolution(has.clone());
     limits.max_storage_buffers_per_shader_stage = has.max_storage_buffers_per_shader_stage;
+    limits.max_buffers_and_acceleration_structures_per_shader_stage =
+        has.max_buffers_and_acceleration_structures_per_shader_stage;
     limits.max_storage_buffer_binding_size = has.max_storage_buffer_binding_size;
     limits.max_buffer_size = has.max_buffer_size;
     limits.max_compute_workgroup_storage_size = has.max_compute_workgroup_storage_size;

@@ -6,6 +6,7 @@ use crate::bindings::{Buffers, Sizes};
 use crate::device::{STORAGE_BUFFERS, describe};
 use crate::layout::{Body, Catch, EVENT_CAPACITY, FIREBALL, MAX_ITEMS, Params, groups};
 use crate::passes::Passes;
+use crate::profile::{Stage, StageTimer};
 use crate::readback::read_buffer;
 use crate::scan::Scan;
 use glam::{DVec3, Vec3};
@@ -17,6 +18,15 @@ pub const THROW_ROOM: u64 = 1024;
 /// `solver.iterations`: a Jacobi sweep carries an impulse one contact
 /// further, as a Gauss-Seidel sweep does, but with a smaller share.
 const SWEEPS_PER_ITERATION: u32 = 4;
+/// Impact rounds (see `impacts.wgsl`): a ball struck in one round strikes
+/// its neighbour in the next.
+const ROUNDS: u32 = 3;
+/// Jacobi sweeps of each impact round.
+const SWEEPS_PER_ROUND: u32 = 12;
+/// Balls nearer than this, in the largest ball's radii, are solved
+/// together whether or not they close at the step's start: a ball struck
+/// into its neighbour within the step must meet it.
+const REACH_RADII: f64 = 0.25;
 /// Sweeps that push overlapping balls apart after they move.
 const SHIFT_SWEEPS: u32 = 8;
 /// How much of what a sweep asks each contact applies, over its share.
@@ -227,6 +237,11 @@ impl GpuBalls {
             u64::from(limits.max_storage_buffers_per_shader_stage),
         )?;
         limit(
+            "buffers per shader stage",
+            u64::from(crate::bindings::BINDINGS),
+            u64::from(limits.max_buffers_and_acceleration_structures_per_shader_stage),
+        )?;
+        limit(
             "a storage buffer binding size (bytes)",
             sizes.largest_buffer(),
             limits.max_storage_buffer_binding_size,
@@ -300,7 +315,7 @@ impl GpuBalls {
             more: [
                 config.room.rolling_resistance as f32,
                 config.tumblers.restitution as f32,
-                0.0,
+                (REACH_RADII * largest) as f32,
                 RELAXATION,
             ],
             tumblers: tumblers as u32,
@@ -469,6 +484,14 @@ impl GpuBalls {
     /// feel them from their next step on; the balls the fireball caught are
     /// reported (see [`GpuBalls::take_catches`]).
     pub fn step(&mut self, world: &mut World) -> Result<(), GpuError> {
+        self.step_timed(world, None)
+    }
+
+    fn step_timed(
+        &mut self,
+        world: &mut World,
+        timer: Option<&StageTimer>,
+    ) -> Result<(), GpuError> {
         let bodies = self.bodies(world);
         self.params.bodies = bodies.len() as u32;
         self.params.step = self.steps as u32;
@@ -482,7 +505,10 @@ impl GpuBalls {
             q.write_buffer(&self.buffers.event_count, 0, &[0; 4]);
         }
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.record_step(&mut encoder);
+        self.record_step(&mut encoder, timer);
+        if let Some(timer) = timer {
+            timer.resolve(&mut encoder);
+        }
         let report = self.tumblers > 0 || catching;
         if report {
             let push = 32 * self.tumblers as u64;
@@ -504,21 +530,35 @@ impl GpuBalls {
         Ok(())
     }
 
-    /// Records one step's passes into `encoder`: grid, contacts, solver
-    /// sweeps, the tumblers' pushes, flight, overlap sweeps, instances.
-    fn record_step(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// Records one step's passes into `encoder`, a compute pass a stage
+    /// (see [`Stage`]), each stamped by `timer` if given.
+    fn record_step(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&StageTimer>) {
         let balls = u64::from(self.params.count);
+        let p = &self.passes;
+        let pass = |encoder: &mut wgpu::CommandEncoder,
+                    stage: Stage,
+                    work: &mut dyn FnMut(&mut wgpu::ComputePass)| {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(stage.name()),
+                timestamp_writes: timer.map(|t| t.writes(stage)),
+            });
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            work(&mut pass);
+        };
         let dispatch =
             |pass: &mut wgpu::ComputePass, pipeline: &wgpu::ComputePipeline, items: u64| {
                 pass.set_pipeline(pipeline);
                 let (x, y) = groups(items);
                 pass.dispatch_workgroups(x, y, 1);
             };
-        let p = &self.passes;
+        // The grid: count, scan, place, sort; its stamp spans all four.
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("count balls by cell"),
-                timestamp_writes: None,
+                timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
+                    end_of_pass_write_index: None,
+                    ..t.writes(Stage::Grid)
+                }),
             });
             pass.set_bind_group(0, &self.bind_group, &[]);
             dispatch(&mut pass, &p.clear_cells, self.cells + 1);
@@ -532,30 +572,85 @@ impl GpuBalls {
             4 * (self.cells + 1),
         );
         self.scan.record(encoder);
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("ball step"),
-            timestamp_writes: None,
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("place balls in cells"),
+                timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
+                    beginning_of_pass_write_index: None,
+                    ..t.writes(Stage::Grid)
+                }),
+            });
+            pass.set_bind_group(0, &self.bind_group, &[]);
+            dispatch(&mut pass, &p.clear_cells, self.cells + 1);
+            dispatch(&mut pass, &p.place_in_cells, balls);
+            dispatch(&mut pass, &p.sort_cells, self.cells);
+        }
+        pass(encoder, Stage::Contacts, &mut |pass| {
+            dispatch(pass, &p.find_contacts, balls)
         });
-        pass.set_bind_group(0, &self.bind_group, &[]);
-        dispatch(&mut pass, &p.clear_cells, self.cells + 1);
-        dispatch(&mut pass, &p.place_in_cells, balls);
-        dispatch(&mut pass, &p.sort_cells, self.cells);
-        dispatch(&mut pass, &p.find_contacts, balls);
-        dispatch(&mut pass, &p.warm_start, balls);
-        for _ in 0..self.solve_sweeps {
-            dispatch(&mut pass, &p.solve_contacts, balls);
-            dispatch(&mut pass, &p.apply_deltas, balls);
+        pass(encoder, Stage::Impacts, &mut |pass| {
+            for _ in 0..ROUNDS {
+                dispatch(pass, &p.raise_impact_goals, balls);
+                for _ in 0..SWEEPS_PER_ROUND {
+                    dispatch(pass, &p.solve_impacts, balls);
+                    dispatch(pass, &p.apply_deltas, balls);
+                }
+            }
+        });
+        pass(encoder, Stage::Solve, &mut |pass| {
+            dispatch(pass, &p.warm_start, balls);
+            for _ in 0..self.solve_sweeps {
+                dispatch(pass, &p.solve_contacts, balls);
+                dispatch(pass, &p.apply_deltas, balls);
+            }
+        });
+        pass(encoder, Stage::Push, &mut |pass| {
+            if self.tumblers > 0 {
+                pass.set_pipeline(&p.sum_tumbler_push);
+                pass.dispatch_workgroups(self.tumblers as u32, 1, 1);
+            }
+        });
+        pass(encoder, Stage::Flight, &mut |pass| {
+            dispatch(pass, &p.fly, balls)
+        });
+        pass(encoder, Stage::Overlaps, &mut |pass| {
+            for _ in 0..SHIFT_SWEEPS {
+                dispatch(pass, &p.find_overlaps, balls);
+                dispatch(pass, &p.apply_shifts, balls);
+            }
+        });
+        pass(encoder, Stage::Instances, &mut |pass| {
+            dispatch(pass, &p.write_instances, balls)
+        });
+    }
+
+    /// Steps `steps` times with each stage timed on the GPU, and returns
+    /// each stage's mean seconds a step; `None` where the device writes no
+    /// timestamps. For the bench: it waits for every step.
+    pub fn profile(
+        &mut self,
+        world: &mut World,
+        steps: u32,
+    ) -> Result<Option<[f64; crate::profile::STAGES]>, GpuError> {
+        let Some(timer) = StageTimer::new(&self.device, &self.queue) else {
+            return Ok(None);
+        };
+        let mut sum = [0.0; crate::profile::STAGES];
+        for _ in 0..steps {
+            self.step_timed(world, Some(&timer))?;
+            for (total, s) in sum.iter_mut().zip(timer.read(&self.device)?) {
+                *total += s;
+            }
         }
-        if self.tumblers > 0 {
-            pass.set_pipeline(&p.sum_tumbler_push);
-            pass.dispatch_workgroups(self.tumblers as u32, 1, 1);
-        }
-        dispatch(&mut pass, &p.fly, balls);
-        for _ in 0..SHIFT_SWEEPS {
-            dispatch(&mut pass, &p.find_overlaps, balls);
-            dispatch(&mut pass, &p.apply_shifts, balls);
-        }
-        dispatch(&mut pass, &p.write_instances, balls);
+        Ok(Some(sum.map(|s| s / f64::from(steps.max(1)))))
+    }
+
+    /// Waits until the GPU has done every step submitted.
+    pub fn finish(&self) -> Result<(), GpuError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(drop)
+            .map_err(|e| GpuError::Readback(e.to_string()))
     }
 
     /// Writes the instances from the state as it is, without a step.

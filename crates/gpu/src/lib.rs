@@ -30,9 +30,11 @@ mod engine;
 mod error;
 mod layout;
 mod passes;
+mod profile;
 mod readback;
 mod scan;
 
 pub use device::{Compute, check_compute, describe, limits};
 pub use engine::{BallState, GpuBalls, THROW_ROOM};
 pub use error::GpuError;
+pub use profile::{STAGES, Stage};

@@ -3,9 +3,10 @@
 //! `bindings.rs`.
 
 /// The shader files, in the order a step runs them.
-const SOURCES: [&str; 6] = [
+const SOURCES: [&str; 7] = [
     include_str!("shaders/grid.wgsl"),
     include_str!("shaders/contacts.wgsl"),
+    include_str!("shaders/impacts.wgsl"),
     include_str!("shaders/solve.wgsl"),
     include_str!("shaders/flight.wgsl"),
     include_str!("shaders/project.wgsl"),
@@ -20,6 +21,8 @@ pub struct Passes {
     pub sort_cells: wgpu::ComputePipeline,
     pub find_contacts: wgpu::ComputePipeline,
     pub warm_start: wgpu::ComputePipeline,
+    pub raise_impact_goals: wgpu::ComputePipeline,
+    pub solve_impacts: wgpu::ComputePipeline,
     pub solve_contacts: wgpu::ComputePipeline,
     pub apply_deltas: wgpu::ComputePipeline,
     pub fly: wgpu::ComputePipeline,
@@ -63,13 +66,15 @@ impl Passes {
             sort_cells: pipeline(0, "sort_cells"),
             find_contacts: pipeline(1, "find_contacts"),
             warm_start: pipeline(1, "warm_start"),
-            solve_contacts: pipeline(2, "solve_contacts"),
-            apply_deltas: pipeline(2, "apply_deltas"),
-            fly: pipeline(3, "fly"),
-            find_overlaps: pipeline(4, "find_overlaps"),
-            apply_shifts: pipeline(4, "apply_shifts"),
-            sum_tumbler_push: pipeline(5, "sum_tumbler_push"),
-            write_instances: pipeline(5, "write_instances"),
+            raise_impact_goals: pipeline(2, "raise_impact_goals"),
+            solve_impacts: pipeline(2, "solve_impacts"),
+            solve_contacts: pipeline(3, "solve_contacts"),
+            apply_deltas: pipeline(3, "apply_deltas"),
+            fly: pipeline(4, "fly"),
+            find_overlaps: pipeline(5, "find_overlaps"),
+            apply_shifts: pipeline(5, "apply_shifts"),
+            sum_tumbler_push: pipeline(6, "sum_tumbler_push"),
+            write_instances: pipeline(6, "write_instances"),
         }
     }
 }

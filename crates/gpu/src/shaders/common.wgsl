@@ -7,12 +7,14 @@ const SLOTS: u32 = 8u;
 const NONE: u32 = 0xffffffffu;
 // A ball's state word: bit 0 alive; bit 1 in the solver (it has a ball or
 // a body within reach); bits 4-7 how many balls it touches; bits 8-10 which
-// of its nearest walls (x, y, z) it touches; bits 16-31 its colour's place
-// in the palette.
+// of its nearest walls (x, y, z) it touches; bits 11-15 how many of its
+// contacts bounce in this impact round; bits 16-31 its colour's place in
+// the palette.
 const ALIVE: u32 = 1u;
 const SOLVED: u32 = 2u;
 const SLOT_SHIFT: u32 = 4u;
 const WALL_SHIFT: u32 = 8u;
+const IMPACT_SHIFT: u32 = 11u;
 const COLOR_SHIFT: u32 = 16u;
 // Bodies a ball can meet besides balls and walls: tumblers' spheres and the
 // fireball. `Body.info.x` is the tumbler's number, or this for the fireball.
@@ -34,7 +36,9 @@ struct Params {
     grid: vec4<f32>,
     // Balls: restitution, friction; walls: restitution, friction.
     material: vec4<f32>,
-    // x: walls' rolling resistance; y: tumblers' restitution; z: unused; w: Jacobi relaxation.
+    // x: walls' rolling resistance; y: tumblers' restitution; z: the reach
+    // within which balls are solved together even if they do not close (m);
+    // w: Jacobi relaxation.
     more: vec4<f32>,
     // Tumblers whose pushes are summed; the palette's first surface colour.
     tumblers: u32,
@@ -92,7 +96,8 @@ struct Event {
 @group(0) @binding(13) var<storage, read_write> slot_impulse: array<vec4<f32>>;
 // Each ball's contacts with the room's nearest wall on each axis.
 @group(0) @binding(14) var<storage, read_write> wall_impulse: array<vec4<f32>>;
-// Each ball's contact with a body (or NONE), and its impulse.
+// Each ball's contact with a body (or NONE), and its impulses: x the
+// impacts', w the resting contact's.
 @group(0) @binding(15) var<storage, read_write> body_of: array<u32>;
 @group(0) @binding(16) var<storage, read_write> body_impulse: array<vec4<f32>>;
 @group(0) @binding(17) var<storage, read> bodies: array<Body>;
@@ -104,6 +109,31 @@ struct Event {
 @group(0) @binding(20) var<storage, read_write> tumbler_push: array<vec4<f32>>;
 @group(0) @binding(21) var<storage, read_write> events: array<Event>;
 @group(0) @binding(22) var<storage, read_write> event_count: atomic<u32>;
+// The impacts (see impacts.wgsl): each contact's bounce goal (the
+// separating speed it must reach, the largest any round asked) and its
+// impulse so far. SLOTS a ball for its balls; for its walls (x, y, z) and
+// body (w), two a ball: goals, then impulses.
+@group(0) @binding(23) var<storage, read_write> slot_impact: array<vec2<f32>>;
+@group(0) @binding(24) var<storage, read_write> own_impact: array<vec4<f32>>;
+
+// No bounce asked: any goal is larger.
+const NO_GOAL: f32 = -1e30;
+
+// The separating speed a contact closing at `approach` must bounce to,
+// if it closes fast enough to bounce and touch within the step; else
+// NO_GOAL.
+fn bounce_goal(approach: f32, gap: f32, restitution: f32) -> f32 {
+    if approach > params.grid.z && gap < approach * dt() {
+        return restitution * approach;
+    }
+    return NO_GOAL;
+}
+
+// The normal (from b to a) and gap of two balls.
+fn pair_geometry(a: u32, b: u32) -> vec4<f32> {
+    let d = pos[a].xyz - pos[b].xyz;
+    return vec4<f32>(direction(d), length(d) - pos[a].w - pos[b].w);
+}
 
 fn ball_index(id: vec3<u32>) -> u32 {
     // Dispatches wider than 65 535 workgroups spill into y.
@@ -147,13 +177,9 @@ fn inv_inertia(inv_mass: f32, r: f32) -> f32 {
     return 2.5 * inv_mass / (r * r);
 }
 
-// The separating speed a contact must end the step with, from how fast it
-// closed at the step's start: a bounce if it closes fast enough to touch
-// within the step, else no more closing than the gap allows.
-fn target_speed(approach: f32, gap: f32, restitution: f32) -> f32 {
-    if approach > params.grid.z && gap < approach * dt() {
-        return restitution * approach;
-    }
+// The separating speed a resting contact must keep: no more closing
+// than its gap allows within the step.
+fn speculative_goal(gap: f32) -> f32 {
     return -max(gap, 0.0) / dt();
 }
 
@@ -228,4 +254,12 @@ fn body_inverse_mass(b: Body, point: vec3<f32>, n: vec3<f32>) -> f32 {
 // The velocity of the material point of body `b` at `point`.
 fn body_point_velocity(b: Body, point: vec3<f32>) -> vec3<f32> {
     return b.velocity.xyz + cross(b.spin.xyz, point - b.origin.xyz);
+}
+
+// Adds the last round's push on the ball's body to the step's (kept in
+// `body_impulse.x`, for the tumblers' pushes), and starts the next at none.
+fn fold_body_impact(i: u32) {
+    let done = own_impact[2u * i + 1u];
+    body_impulse[i].x += done.w;
+    own_impact[2u * i + 1u] = vec4<f32>(0.0);
 }

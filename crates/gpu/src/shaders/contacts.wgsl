@@ -42,10 +42,13 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     let p = pos[i].xyz;
     let r = pos[i].w;
     let v = vel[i].xyz;
+    // A ball reads only its own: the others read `vel`, unchanged here.
+    vel_start[i] = vel[i];
     let margin = params.grid.y;
     let step = dt();
 
-    // The nearest balls, nearest first (ties: lower number first).
+    // The nearest balls by the gap the step would leave, nearest first
+    // (ties: lower number first).
     var near_gap: array<f32, SLOTS>;
     var near_ball: array<u32, SLOTS>;
     var found = 0u;
@@ -71,25 +74,28 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
                         n = d / dist;
                     }
                     let approach = max(0.0, -dot(v - vel[j].xyz, n));
-                    if gap >= margin + approach * step {
+                    if gap >= max(margin + approach * step, params.more.z) {
                         continue;
                     }
+                    // Ranked by the gap the step would leave: the pairs that
+                    // would sink deepest into each other are kept first.
+                    let left = gap - approach * step;
                     // Insert, keeping the SLOTS nearest.
                     var at = found;
                     if found == SLOTS {
-                        if gap >= near_gap[SLOTS - 1u] {
+                        if left >= near_gap[SLOTS - 1u] {
                             continue;
                         }
                         at = SLOTS - 1u;
                     } else {
                         found++;
                     }
-                    while at > 0u && near_gap[at - 1u] > gap {
+                    while at > 0u && near_gap[at - 1u] > left {
                         near_gap[at] = near_gap[at - 1u];
                         near_ball[at] = near_ball[at - 1u];
                         at--;
                     }
-                    near_gap[at] = gap;
+                    near_gap[at] = left;
                     near_ball[at] = j;
                 }
             }
@@ -98,6 +104,7 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var k = 0u; k < found; k++) {
         let j = near_ball[k];
         slot_other[i * SLOTS + k] = j;
+        slot_impact[i * SLOTS + k] = vec2<f32>(NO_GOAL, 0.0);
         for (var m = 0u; m < old_slots; m++) {
             if old_ball[m] == j {
                 let a = min(i, j);
@@ -147,8 +154,10 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     body_of[i] = best;
+    own_impact[2u * i] = vec4<f32>(NO_GOAL);
+    own_impact[2u * i + 1u] = vec4<f32>(0.0);
     if best != NONE && best == old_body {
-        body_impulse[i] = old_body_impulse;
+        body_impulse[i] = vec4<f32>(0.0, 0.0, 0.0, old_body_impulse.w);
     }
 
     if found > 0u || best != NONE {
@@ -170,22 +179,21 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     state[i] = s;
 }
 
-// Each ball's velocity at the step's start is kept (for the bounces'
-// targets and the lone balls' flight), then gravity and its contacts' warm
-// impulses are given to it. A ball reads only its own contacts here.
+// After the impacts, gravity and each ball's contacts' warm impulses are
+// given to its velocity. A ball reads only its own contacts here.
 @compute @workgroup_size(256)
 fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
     if i >= params.count || !alive(i) {
         return;
     }
-    vel_start[i] = vel[i];
     let p = pos[i].xyz;
     let r = pos[i].w;
     let im = vel[i].w;
     var dv = gravity() * dt();
     var dw = vec3<f32>(0.0);
     if (state[i] & SOLVED) != 0u {
+        fold_body_impact(i);
         for (var k = 0u; k < slot_count(state[i]); k++) {
             let j = slot_other[i * SLOTS + k];
             let a = min(i, j);

@@ -39,11 +39,13 @@ fn sum_tumbler_push(
                 if b == NONE || bodies[b].info.x != t {
                     continue;
                 }
-                if body_impulse[i].w <= 0.0 {
+                // Its impact's push and its resting contact's.
+                let pushed = body_impulse[i].x + body_impulse[i].w;
+                if pushed <= 0.0 {
                     continue;
                 }
                 let n = direction(pos[i].xyz - bodies[b].sphere.xyz);
-                let on_tumbler = -body_impulse[i].w * n;
+                let on_tumbler = -pushed * n;
                 let point = bodies[b].sphere.xyz + n * bodies[b].sphere.w;
                 impulse += vec4<f32>(on_tumbler, 1.0 / vel[i].w);
                 moment += cross(point - origin, on_tumbler);

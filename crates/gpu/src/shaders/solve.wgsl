@@ -1,4 +1,6 @@
-// One Jacobi sweep of the contact solver: every ball works out, from the
+// The contact solver, after the impacts (see impacts.wgsl): no contact
+// may close faster than its gap allows within the step, and none bounces.
+// One Jacobi sweep of it: every ball works out, from the
 // velocities all balls had after the last sweep, what each of its contacts
 // adds to its impulse so far (normal: towards the target speed, never
 // pulling; friction: towards no slip, within the Coulomb cone), and sums
@@ -18,18 +20,12 @@ struct PairImpulse {
 }
 
 fn solve_pair(a: u32, b: u32, total: vec4<f32>, share: f32) -> PairImpulse {
-    let d = pos[a].xyz - pos[b].xyz;
-    let dist = length(d);
-    var n = vec3<f32>(0.0, 1.0, 0.0);
-    if dist > 0.0 {
-        n = d / dist;
-    }
+    let g = pair_geometry(a, b);
+    let n = g.xyz;
+    let goal = speculative_goal(g.w);
     let ra = pos[a].w;
     let rb = pos[b].w;
-    let gap = dist - ra - rb;
     let im = vel[a].w + vel[b].w;
-    let approach = -dot(vel_start[a].xyz - vel_start[b].xyz, n);
-    let goal = target_speed(approach, gap, params.material.x);
     let normal_speed = dot(vel[a].xyz - vel[b].xyz, n);
     let normal = max(0.0, total.w + share * (goal - normal_speed) / im);
     // The contact points' relative velocity, less its normal part: the slip.
@@ -61,7 +57,6 @@ fn solve_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         let j = slot_other[i * SLOTS + k];
         let share = relax / f32(max(mine, contact_count(j)));
         let total = slot_impulse[i * SLOTS + k];
-        var n: vec3<f32>;
         var change: vec3<f32>;
         if i < j {
             let pair = solve_pair(i, j, total, share);
@@ -85,8 +80,7 @@ fn solve_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         let wall = nearest_wall(p, r, axis);
         let n = wall.xyz;
         let total = wall_impulse[i * 3u + axis];
-        let approach = -dot(vel_start[i].xyz, n);
-        let goal = target_speed(approach, wall.w, params.material.z);
+        let goal = speculative_goal(wall.w);
         let normal = max(0.0, total.w + share * (goal - dot(vel[i].xyz, n)) / im);
         let u = vel[i].xyz + cross(spin[i].xyz, -r * n);
         let slip = u - dot(u, n) * n;
@@ -102,12 +96,11 @@ fn solve_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         let body = bodies[b];
         let d = p - body.sphere.xyz;
         let n = d / max(length(d), 1e-9);
-        let gap = length(d) - r - body.sphere.w;
         let point = body.sphere.xyz + n * body.sphere.w;
         let vb = body_point_velocity(body, point);
         let total = body_impulse[i];
+        let goal = speculative_goal(length(d) - r - body.sphere.w);
         let approach = -dot(vel_start[i].xyz - vb, n);
-        let goal = target_speed(approach, gap, params.more.y);
         // The tumbler stands still within the step, but the push is shared
         // as if it gave way: its effective mass at the point counts.
         let k = im + body_inverse_mass(body, point, n);
@@ -116,7 +109,7 @@ fn solve_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         // cannot be squeezed into an ever larger push back.
         let most = ((1.0 + params.more.y) * max(approach, 0.0) + BODY_WEIGHTS * params.room_max.w * dt()) / k;
         let normal = clamp(total.w + share * (goal - dot(vel[i].xyz - vb, n)) / k, 0.0, most);
-        body_impulse[i] = vec4<f32>(0.0, 0.0, 0.0, normal);
+        body_impulse[i] = vec4<f32>(total.x, 0.0, 0.0, normal);
         dv += (normal - total.w) * n * im;
     }
     delta[i] = vec4<f32>(dv, 0.0);

@@ -34,6 +34,9 @@ pub use shipped::{SHIPPED_SCENES, ShippedScene};
 /// takes them away and the count starts again.
 pub const MAX_THROWN: usize = 500;
 
+// The GPU engine keeps room for every ball a player may throw.
+const _: () = assert!(MAX_THROWN as u64 <= rolypoly_gpu::THROW_ROOM);
+
 /// Speed a ball is thrown at unless the player sets another (m/s), and the
 /// range they may set.
 pub const THROW_SPEED: f64 = 8.0;

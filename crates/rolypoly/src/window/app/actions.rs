@@ -51,7 +51,7 @@ impl App {
                 self.refresh_tumbler_look();
                 self.log.say(
                     "reset",
-                    json!({ "balls": self.sandbox.world().balls().len(), "sim_time": self.sandbox.world().time() }),
+                    json!({ "balls": self.sandbox.sim.ball_count(), "sim_time": self.sandbox.world().time() }),
                 );
             }
             Err(e) => self.tell(format!("cannot restart: {e}")),
@@ -65,7 +65,7 @@ impl App {
         match self.sandbox.throw(from, forward.as_dvec3()) {
             Ok(ball) => self.log.say(
                 "throw",
-                json!({ "ball": ball, "balls": self.sandbox.world().balls().len() }),
+                json!({ "ball": ball, "balls": self.sandbox.sim.ball_count() }),
             ),
             Err(refused) => self.tell(refused.to_string()),
         }
@@ -86,7 +86,7 @@ impl App {
                 self.panel.message = None;
                 self.log.say(
                     "scene",
-                    json!({ "name": name, "balls": self.sandbox.world().balls().len() }),
+                    json!({ "name": name, "balls": self.sandbox.sim.ball_count() }),
                 );
             }
             Err(e) => self.tell(format!("cannot load {name}: {e:#}")),

@@ -98,7 +98,14 @@ impl App {
         self.cursor = Vec2::new(config.width as f32, config.height as f32) * 0.5;
         self.log.say(
             "ready",
-            json!({ "width": config.width, "height": config.height, "adapter": gpu.describe(), "seed": self.options.seed }),
+            json!({
+                "width": config.width,
+                "height": config.height,
+                "adapter": gpu.describe(),
+                "seed": self.options.seed,
+                "engine": self.sandbox.scene().engine.name(),
+                "balls": self.sandbox.sim.ball_count(),
+            }),
         );
         Ok(Running {
             window,
