@@ -28,7 +28,7 @@ const SWEEPS_PER_ROUND: u32 = 12;
 /// into its neighbour within the step must meet it.
 const REACH_RADII: f64 = 0.25;
 /// Sweeps that push overlapping balls apart after they move.
-const SHIFT_SWEEPS: u32 = 8;
+const SHIFT_SWEEPS: u32 = 16;
 /// How much of what a sweep asks each contact applies, over its share.
 const RELAXATION: f32 = 1.0;
 /// The speculative margin, in the largest ball's radii: contacts this near
@@ -218,41 +218,7 @@ impl GpuBalls {
             tumblers: tumblers as u64,
             colors: (7 + tumblers + config.balls.placements.len()) as u64,
         };
-        let limits = device.limits();
-        let limit = |what, need: u64, have: u64| {
-            if need > have {
-                Err(GpuError::Limit {
-                    adapter: adapter.clone(),
-                    what,
-                    need,
-                    have,
-                })
-            } else {
-                Ok(())
-            }
-        };
-        limit(
-            "storage buffers per shader stage",
-            u64::from(STORAGE_BUFFERS),
-            u64::from(limits.max_storage_buffers_per_shader_stage),
-        )?;
-        limit(
-            "buffers per shader stage",
-            u64::from(crate::bindings::BINDINGS),
-            u64::from(limits.max_buffers_and_acceleration_structures_per_shader_stage),
-        )?;
-        limit(
-            "a storage buffer binding size (bytes)",
-            sizes.largest_buffer(),
-            limits.max_storage_buffer_binding_size,
-        )?;
-        limit(
-            "a buffer size (bytes)",
-            sizes.largest_buffer(),
-            limits.max_buffer_size,
-        )?;
-        limit("grid cells", cells + 1, MAX_ITEMS.min(u64::from(u32::MAX)))?;
-        limit("balls", capacity, MAX_ITEMS)?;
+        check_limits(&device.limits(), &sizes, &adapter)?;
 
         let layout = Buffers::layout(&device);
         let buffers = Buffers::new(&device, &sizes);
@@ -763,8 +729,91 @@ impl GpuBalls {
     }
 }
 
+/// Whether a device of `limits` holds buffers of `sizes`; else the
+/// first limit that is too small, named.
+fn check_limits(limits: &wgpu::Limits, sizes: &Sizes, adapter: &str) -> Result<(), GpuError> {
+    let limit = |what, need: u64, have: u64| {
+        if need > have {
+            Err(GpuError::Limit {
+                adapter: adapter.to_owned(),
+                what,
+                need,
+                have,
+            })
+        } else {
+            Ok(())
+        }
+    };
+    limit(
+        "storage buffers per shader stage",
+        u64::from(STORAGE_BUFFERS),
+        u64::from(limits.max_storage_buffers_per_shader_stage),
+    )?;
+    limit(
+        "buffers per shader stage",
+        u64::from(crate::bindings::BINDINGS),
+        u64::from(limits.max_buffers_and_acceleration_structures_per_shader_stage),
+    )?;
+    limit(
+        "a storage buffer binding size (bytes)",
+        sizes.largest_buffer(),
+        limits.max_storage_buffer_binding_size,
+    )?;
+    limit(
+        "a buffer size (bytes)",
+        sizes.largest_buffer(),
+        limits.max_buffer_size,
+    )?;
+    limit(
+        "grid cells",
+        sizes.cells + 1,
+        MAX_ITEMS.min(u64::from(u32::MAX)),
+    )?;
+    limit("balls", sizes.balls, MAX_ITEMS)
+}
+
 /// Bytes of the step report: two vectors a tumbler, the catch count
 /// (padded to 16), the catches.
 fn report_size(tumblers: usize) -> u64 {
     32 * tumblers as u64 + 16 + EVENT_CAPACITY * std::mem::size_of::<Catch>() as u64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_limit_too_small_for_the_scene_is_named_with_what_it_needs() {
+        let sizes = |balls| Sizes {
+            balls,
+            cells: 1000,
+            bodies: 1,
+            tumblers: 0,
+            colors: 7,
+        };
+        let roomy = wgpu::Limits {
+            max_storage_buffers_per_shader_stage: 32,
+            max_buffers_and_acceleration_structures_per_shader_stage: 32,
+            max_storage_buffer_binding_size: 1 << 27,
+            max_buffer_size: 1 << 31,
+            ..wgpu::Limits::default()
+        };
+        assert!(check_limits(&roomy, &sizes(1_000_000), "test").is_ok());
+        // WebGL-class limits have no storage buffers at all.
+        let err = check_limits(
+            &wgpu::Limits::downlevel_webgl2_defaults(),
+            &sizes(10),
+            "test",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("storage buffers per shader stage"), "{err}");
+        assert!(err.contains("--engine cpu"), "{err}");
+        // 128 MiB bindings hold a million balls' contacts, not two million.
+        let err = check_limits(&roomy, &sizes(2_000_000), "test")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("storage buffer binding size"), "{err}");
+        assert!(err.contains("256000000"), "{err}");
+    }
 }

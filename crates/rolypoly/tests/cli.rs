@@ -858,3 +858,115 @@ fn render_show_draws_the_views_it_names() {
     let changed = pixels_differing(&plain, &shown, 12);
     assert!(changed > 30, "--show changed only {changed} pixels");
 }
+
+#[test]
+fn the_gpu_engine_simulates_and_traces_the_balls_it_steps() {
+    let args = [
+        "simulate", "--engine", "gpu", "--steps", "120", "--every", "60", "--trace", "-",
+    ];
+    let output = rolypoly(&args);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let lines = json_lines(&stdout(&output));
+    let states: Vec<&serde_json::Value> = lines.iter().filter(|l| l["kind"] == "state").collect();
+    assert_eq!(states.len(), 3, "steps 0, 60 and 120");
+    let balls = |state: &serde_json::Value| state["balls"].as_array().expect("balls").clone();
+    let (first, last) = (balls(states[0]), balls(states[2]));
+    assert_eq!((first.len(), last.len()), (30, 30));
+    // They fell: the GPU's state came back, not the start's.
+    let height = |ball: &serde_json::Value| ball["p"][1].as_f64().expect("a height");
+    let fallen = first
+        .iter()
+        .zip(&last)
+        .filter(|(a, b)| height(b) < height(a))
+        .count();
+    assert!(fallen > 15, "only {fallen} of 30 fell");
+    // A rerun gives the same bytes.
+    assert_eq!(stdout(&rolypoly(&args)), stdout(&output));
+}
+
+#[test]
+fn the_gpu_engine_is_chosen_by_flag_or_scene_and_a_wrong_name_is_refused() {
+    let output = rolypoly(&["simulate", "--engine", "quantum", "--steps", "1"]);
+    let err = assert_clean_failure(&output);
+    assert!(
+        err.contains("`quantum` is not an engine: use one of cpu, gpu"),
+        "{err}"
+    );
+    let err = failure_for_scene("engine.toml", "[solver]\nengine = \"quantum\"\n");
+    assert!(
+        err.contains("solver.engine") && err.contains("cpu") && err.contains("gpu"),
+        "{err}"
+    );
+    let scene = scene_file("gpu-engine.toml", "[solver]\nengine = \"gpu\"\n");
+    let by_scene = rolypoly(&[
+        "simulate",
+        "--scene",
+        scene.to_str().expect("UTF-8"),
+        "--steps",
+        "60",
+        "--trace",
+        "-",
+    ]);
+    let by_flag = rolypoly(&[
+        "simulate", "--engine", "gpu", "--steps", "60", "--trace", "-",
+    ]);
+    let on_cpu = rolypoly(&["simulate", "--steps", "60", "--trace", "-"]);
+    let last = |out: &Output| json_lines(&stdout(out)).pop().expect("a state")["balls"].clone();
+    assert_eq!(
+        last(&by_scene),
+        last(&by_flag),
+        "the scene key and the flag choose alike"
+    );
+    assert_ne!(last(&by_flag), last(&on_cpu), "the engines differ");
+}
+
+#[test]
+fn the_gpu_engine_without_an_adapter_is_one_clear_error_and_the_cpu_engine_still_runs() {
+    let run = |engine: &str| {
+        Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+            .args(["simulate", "--engine", engine, "--steps", "10"])
+            .env("WGPU_BACKEND", "vulkan")
+            .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
+            .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
+            .output()
+            .expect("the rolypoly binary runs")
+    };
+    let err = assert_clean_failure(&run("gpu"));
+    assert!(
+        err.contains("the gpu engine found no graphics adapter"),
+        "{err}"
+    );
+    assert!(
+        err.contains("--engine cpu"),
+        "it says what else to do: {err}"
+    );
+    assert_eq!(err.trim_end().lines().count(), 1, "one message: {err}");
+    assert!(
+        run("cpu").status.success(),
+        "no silent need of a GPU on the CPU engine"
+    );
+}
+
+#[test]
+fn render_draws_the_gpu_engines_balls_from_its_own_buffer() {
+    let with = scratch("gpu-balls.png");
+    let without = scratch("gpu-no-balls.png");
+    for (out, balls) in [(&with, "300"), (&without, "0")] {
+        let output = rolypoly(&[
+            "render",
+            "--engine",
+            "gpu",
+            "--balls",
+            balls,
+            "--time",
+            "0.5",
+            "--size",
+            "160x90",
+            "--out",
+            out.to_str().expect("UTF-8"),
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let differing = pixels_differing(&with, &without, 24);
+    assert!(differing > 1500, "the balls cover {differing} pixels");
+}

@@ -64,6 +64,7 @@ fn every_shipped_scene_loads_builds_and_says_how_to_run_it() {
         "heap.toml",
         "ballpit-10k.toml",
         "ballpit-100k.toml",
+        "ballpit-1m.toml",
     ] {
         assert!(names.iter().any(|n| n == wanted), "{wanted} is missing");
     }

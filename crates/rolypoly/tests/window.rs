@@ -57,24 +57,20 @@ fn number(v: &Value, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("{key} missing in {v}"))
 }
 
-#[test]
-fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshots() {
-    let (display, _xvfb) = start_display();
-    let shots = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("window-shots");
-    let _ = std::fs::remove_dir_all(&shots);
-    std::fs::create_dir_all(&shots).expect("scratch folder");
+/// Opens the window with `args` (and the event log) on a display of its
+/// own, focused, once it said it is ready; and what it said.
+fn open_window(
+    args: &[&str],
+    shots: &std::path::Path,
+) -> (Session, Guard, display::XServer, Value) {
+    let (display, xvfb) = start_display();
     let runtime = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("xdg-runtime");
     std::fs::create_dir_all(&runtime).expect("runtime folder");
     let mut child = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
-        .args([
-            "--log-events",
-            "--window-size",
-            "480x270",
-            "--seed",
-            "3",
-            "--screenshot-dir",
-        ])
-        .arg(&shots)
+        .args(["--log-events", "--window-size", "480x270"])
+        .args(args)
+        .arg("--screenshot-dir")
+        .arg(shots)
         .env("DISPLAY", &display)
         .env_remove("WAYLAND_DISPLAY")
         .env("XDG_RUNTIME_DIR", &runtime)
@@ -99,10 +95,6 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
         seen: Vec::new(),
     };
     let ready = s.expect("the window to open", |v| v["event"] == "ready");
-    assert_eq!(
-        (ready["width"].as_u64(), ready["height"].as_u64()),
-        (Some(480), Some(270))
-    );
     let found = Command::new(tool("xdotool"))
         .args(["search", "--sync", "--name", "^rolypoly$"])
         .env("DISPLAY", &s.display)
@@ -116,6 +108,65 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
     let w = s.window.clone();
     s.xdotool(&["windowfocus", "--sync", &w]);
     s.settle();
+    (s, app, xvfb, ready)
+}
+
+/// Escape releases the mouse, a second Escape quits, cleanly.
+fn quit(s: &mut Session, mut app: Guard) {
+    s.xdotool(&["key", "Escape"]);
+    s.expect("the mouse released", |v| {
+        v["event"] == "mouse" && v["captured"] == false
+    });
+    s.xdotool(&["key", "Escape"]);
+    let deadline = Instant::now() + Duration::from_secs(30);
+    loop {
+        if let Some(status) = app.0.try_wait().expect("wait") {
+            assert!(status.success(), "rolypoly exited with {status}");
+            break;
+        }
+        assert!(
+            Instant::now() < deadline,
+            "rolypoly did not quit on the second Escape"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+fn scratch_folder(name: &str) -> PathBuf {
+    let folder = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&folder);
+    std::fs::create_dir_all(&folder).expect("scratch folder");
+    folder
+}
+
+#[test]
+fn the_gpu_engine_plays_in_the_window_throws_and_restarts() {
+    let shots = scratch_folder("window-gpu-shots");
+    let (mut s, app, _xvfb, ready) = open_window(&["--engine", "gpu", "--seed", "2"], &shots);
+    assert_eq!(
+        (ready["engine"].as_str(), ready["balls"].as_u64()),
+        (Some("gpu"), Some(30))
+    );
+    let rate = s.expect("the frame rate", |v| v["event"] == "frame_rate");
+    assert!(number(&rate, "fps") > 0.0, "{rate}");
+    s.xdotool(&["key", "b"]);
+    let thrown = s.expect("a ball thrown", |v| v["event"] == "throw");
+    assert_eq!(thrown["balls"].as_u64(), Some(31), "{thrown}");
+    s.xdotool(&["key", "i"]);
+    let reset = s.expect("the balls anew", |v| v["event"] == "reset");
+    assert_eq!(reset["balls"].as_u64(), Some(30), "{reset}");
+    quit(&mut s, app);
+}
+
+#[test]
+fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshots() {
+    let shots = scratch_folder("window-shots");
+    let (mut s, app, _xvfb, ready) = open_window(&["--seed", "3"], &shots);
+    assert_eq!(
+        (ready["width"].as_u64(), ready["height"].as_u64()),
+        (Some(480), Some(270))
+    );
+    let w = s.window.clone();
 
     // Once a second the frame rate, and the quality level auto chose.
     let rate = s.expect("the frame rate", |v| v["event"] == "frame_rate");
@@ -386,23 +437,5 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
         "the screenshot is blank"
     );
 
-    // Escape releases the mouse, a second Escape quits.
-    s.xdotool(&["key", "Escape"]);
-    s.expect("the mouse released", |v| {
-        v["event"] == "mouse" && v["captured"] == false
-    });
-    s.xdotool(&["key", "Escape"]);
-    let mut app = app;
-    let deadline = Instant::now() + Duration::from_secs(30);
-    loop {
-        if let Some(status) = app.0.try_wait().expect("wait") {
-            assert!(status.success(), "rolypoly exited with {status}");
-            break;
-        }
-        assert!(
-            Instant::now() < deadline,
-            "rolypoly did not quit on the second Escape"
-        );
-        std::thread::sleep(Duration::from_millis(100));
-    }
+    quit(&mut s, app);
 }

@@ -1,7 +1,9 @@
 // What the velocities left of overlap is pushed out by position alone, in
 // Jacobi sweeps like the solver's: each ball its share of each overlap
 // with a ball (the lighter moved more) or a body, then all at once. The
-// velocities are left alone, so this makes no motion.
+// velocities are left alone, so this makes no motion. The last SLOP of an
+// overlap is left: pushed out whole, resting balls would stand a hair
+// apart, fall back in and bounce, and a pile would never rest.
 
 @compute @workgroup_size(256)
 fn find_overlaps(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -14,6 +16,7 @@ fn find_overlaps(@builtin(global_invocation_id) id: vec3<u32>) {
     let im = vel[i].w;
     let mine = contact_count(i);
     let relax = params.more.w;
+    let slop = params.grid.y;
     var shift = vec3<f32>(0.0);
     let slots = slot_count(state[i]);
     for (var k = 0u; k < slots; k++) {
@@ -23,7 +26,7 @@ fn find_overlaps(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         let d = p - pos[j].xyz;
         let dist = length(d);
-        let overlap = r + pos[j].w - dist;
+        let overlap = r + pos[j].w - dist - slop;
         if overlap <= 0.0 || dist <= 0.0 {
             continue;
         }
@@ -34,7 +37,7 @@ fn find_overlaps(@builtin(global_invocation_id) id: vec3<u32>) {
     if b != NONE && bodies[b].info.x != FIREBALL {
         let d = p - bodies[b].sphere.xyz;
         let dist = length(d);
-        let overlap = r + bodies[b].sphere.w - dist;
+        let overlap = r + bodies[b].sphere.w - dist - slop;
         if overlap > 0.0 && dist > 0.0 {
             shift += d / dist * overlap * relax / f32(mine);
         }

@@ -25,7 +25,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
     check_outputs(cli)?;
     if let Some(Command::Replay(args)) = &cli.command {
         // A recording carries its own scene and seed.
-        return replay::replay(args, &cli.window);
+        return replay::replay(args, &cli.window, cli.scene.engine);
     }
     let scene_args = &cli.scene;
     let path = scene_args.scene.as_deref();
@@ -62,7 +62,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
             gpu,
             args,
         ),
-        Some(Command::Replay(args)) => replay::replay(args, &cli.window),
+        Some(Command::Replay(args)) => replay::replay(args, &cli.window, cli.scene.engine),
         Some(Command::MakeTumblerObj(args)) => {
             make_tumbler_obj::make_tumbler_obj(world.config(), args)
         }

@@ -16,15 +16,20 @@ use crate::window::fly_camera::FlyCamera;
 const MAX_REPLAY_HOURS: f64 = 10.0;
 
 /// Plays the recording `args.log`: off-screen into `args.out` if given,
-/// else in a window opened as `window` says.
-pub fn replay(args: &ReplayArgs, window: &WindowArgs) -> anyhow::Result<()> {
+/// else in a window opened as `window` says; on `engine` where given,
+/// else on the recording's.
+pub fn replay(
+    args: &ReplayArgs,
+    window: &WindowArgs,
+    engine: Option<crate::engine::Engine>,
+) -> anyhow::Result<()> {
     if args.frame.fireball {
         anyhow::bail!(
             "replay: --fireball does not apply: the recording says when the fireball flies"
         );
     }
     let log = ReplayLog::read(&args.log)?;
-    let mut sandbox = Sandbox::for_replay(&log)
+    let mut sandbox = Sandbox::for_replay_on(&log, engine)
         .with_context(|| format!("cannot replay `{}`", args.log.display()))?;
     let dt = sandbox.world().config().solver.dt;
     let hours = log.to_tick as f64 * dt / 3600.0;

@@ -482,7 +482,17 @@ impl Sandbox {
     /// The sandbox at the start of `log`'s world line with its inputs to
     /// play, not yet stepped.
     pub fn for_replay(log: &ReplayLog) -> Result<Sandbox, Refused> {
-        let scene = scene::parse_scene(&log.scene, &log.name)?;
+        Sandbox::for_replay_on(log, None)
+    }
+
+    /// [`Sandbox::for_replay`], its balls stepped by `engine` where given
+    /// instead of the recording's (the end digest then holds only if it is
+    /// the engine the recording was made on).
+    pub fn for_replay_on(log: &ReplayLog, engine: Option<Engine>) -> Result<Sandbox, Refused> {
+        let mut scene = scene::parse_scene(&log.scene, &log.name)?;
+        if let Some(engine) = engine {
+            scene.engine = engine;
+        }
         let mut sandbox = Sandbox::new(scene, &log.name, log.seed)?;
         sandbox.script = Some((log.inputs.iter().cloned().collect(), log.to_tick));
         Ok(sandbox)

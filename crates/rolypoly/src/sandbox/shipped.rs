@@ -21,7 +21,7 @@ macro_rules! shipped {
 
 /// Every file in `scenes/`, the default first (a test checks that none is
 /// missing).
-pub const SHIPPED_SCENES: [ShippedScene; 9] = shipped![
+pub const SHIPPED_SCENES: [ShippedScene; 10] = shipped![
     "default.toml",
     "newtons-cradle.toml",
     "billiards-break.toml",
@@ -31,6 +31,7 @@ pub const SHIPPED_SCENES: [ShippedScene; 9] = shipped![
     "heap.toml",
     "ballpit-10k.toml",
     "ballpit-100k.toml",
+    "ballpit-1m.toml",
 ];
 
 impl ShippedScene {

@@ -401,20 +401,6 @@ pub static KEYS: &[Key] = &[
         "How finely frames are drawn; auto starts high and steps down while the window is slow; render and record draw auto as high (--quality).",
     ),
     key_of(
-        "solver.engine",
-        Word(WordPlace {
-            names: &Engine::NAMES,
-            read: |scene| scene.engine.name(),
-            write: |scene, name| {
-                scene.engine = Engine::from_name(name).unwrap_or(scene.engine);
-            },
-        }),
-        Any,
-        Restart,
-        Choice("engine"),
-        "Which engine steps the balls: cpu (the reference) or gpu (compute shaders on the graphics adapter; an adapter without them is an error) (--engine).",
-    ),
-    key_of(
         "balls.count",
         Count(place!(world.balls.count)),
         Within(Bounds::closed(0.0, MAX_BALLS as f64)),
@@ -719,6 +705,20 @@ pub static KEYS: &[Key] = &[
         NextStep,
         Slider("event threshold, m/s", 0.0, 5.0),
         "Below this approach speed (m/s) a contact emits no event and changes no colour.",
+    ),
+    key_of(
+        "solver.engine",
+        Word(WordPlace {
+            names: &Engine::NAMES,
+            read: |scene| scene.engine.name(),
+            write: |scene, name| {
+                scene.engine = Engine::from_name(name).unwrap_or(scene.engine);
+            },
+        }),
+        Any,
+        Restart,
+        Choice("engine"),
+        "Which engine steps the balls: cpu (the reference) or gpu (compute shaders on the graphics adapter; an adapter without them is an error) (--engine).",
     ),
     key_of(
         "effects.capacity",

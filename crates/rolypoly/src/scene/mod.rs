@@ -842,14 +842,21 @@ mod tests {
         let overrides = Overrides {
             balls: Some(7),
             gravity: Some(1.5),
+            engine: Some(Engine::Gpu),
         };
-        let parsed = parse_scene_with("gravity = 3\n", "test.toml", &overrides).unwrap();
+        let parsed = parse_scene_with(
+            "gravity = 3\n[solver]\nengine = \"cpu\"\n",
+            "test.toml",
+            &overrides,
+        )
+        .unwrap();
         assert_eq!(parsed.world.balls.count, 7);
         assert_eq!(parsed.world.gravity, 1.5);
+        assert_eq!(parsed.engine, Engine::Gpu, "--engine wins over the file");
 
         let overrides = Overrides {
-            balls: None,
             gravity: Some(-2.0),
+            ..Overrides::default()
         };
         let text = parse_scene_with("", "test.toml", &overrides)
             .unwrap_err()
