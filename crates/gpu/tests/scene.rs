@@ -78,7 +78,7 @@ fn balls_shove_a_tumbler_which_rights_itself() {
         let mut config = WorldConfig::default();
         config.fireball.starts_active = false;
         config.tumblers.placements.truncate(1);
-        let t = config.tumblers.placements[0].clone();
+        let t = config.tumblers.placements[0];
         config.balls.count = 0;
         // A volley at the head, from the side.
         config.balls.placements = (0..12)

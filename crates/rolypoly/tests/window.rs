@@ -57,12 +57,26 @@ fn number(v: &Value, key: &str) -> f64 {
         .unwrap_or_else(|| panic!("{key} missing in {v}"))
 }
 
+/// One window at a time: two would race for a display, and each test's
+/// keys must reach its own window.
+static ONE_WINDOW: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// Opens the window with `args` (and the event log) on a display of its
-/// own, focused, once it said it is ready; and what it said.
+/// own, focused, once it said it is ready; and what it said. The window is
+/// the only one open while the returned guard lives.
 fn open_window(
     args: &[&str],
     shots: &std::path::Path,
-) -> (Session, Guard, display::XServer, Value) {
+) -> (
+    Session,
+    Guard,
+    display::XServer,
+    Value,
+    std::sync::MutexGuard<'static, ()>,
+) {
+    let alone = ONE_WINDOW
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let (display, xvfb) = start_display();
     let runtime = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("xdg-runtime");
     std::fs::create_dir_all(&runtime).expect("runtime folder");
@@ -108,7 +122,7 @@ fn open_window(
     let w = s.window.clone();
     s.xdotool(&["windowfocus", "--sync", &w]);
     s.settle();
-    (s, app, xvfb, ready)
+    (s, app, xvfb, ready, alone)
 }
 
 /// Escape releases the mouse, a second Escape quits, cleanly.
@@ -142,7 +156,8 @@ fn scratch_folder(name: &str) -> PathBuf {
 #[test]
 fn the_gpu_engine_plays_in_the_window_throws_and_restarts() {
     let shots = scratch_folder("window-gpu-shots");
-    let (mut s, app, _xvfb, ready) = open_window(&["--engine", "gpu", "--seed", "2"], &shots);
+    let (mut s, app, _xvfb, ready, _alone) =
+        open_window(&["--engine", "gpu", "--seed", "2"], &shots);
     assert_eq!(
         (ready["engine"].as_str(), ready["balls"].as_u64()),
         (Some("gpu"), Some(30))
@@ -161,7 +176,8 @@ fn the_gpu_engine_plays_in_the_window_throws_and_restarts() {
 #[test]
 fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshots() {
     let shots = scratch_folder("window-shots");
-    let (mut s, app, _xvfb, ready) = open_window(&["--seed", "3"], &shots);
+    let (mut s, app, _xvfb, ready, _alone) = open_window(&["--seed", "3"], &shots);
+    let runtime = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("xdg-runtime");
     assert_eq!(
         (ready["width"].as_u64(), ready["height"].as_u64()),
         (Some(480), Some(270))

@@ -51,7 +51,7 @@ pub fn overlap_and_escapes(state: &BallState, min: DVec3, max: DVec3) -> (f64, u
     for &i in &live {
         let p = state.positions[i].as_dvec3();
         let r = f64::from(state.radii[i]);
-        if !(p.cmpge(min).all() && p.cmple(max).all()) || !p.is_finite() {
+        if !(p.cmpge(min).all() && p.cmple(max).all() && p.is_finite()) {
             escaped += 1;
         }
         let wall = (p - min).min(max - p).min_element();

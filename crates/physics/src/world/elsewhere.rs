@@ -70,7 +70,7 @@ impl World {
             return;
         };
         let strength = impulse.length();
-        if !(strength > 0.0) || !moment.is_finite() {
+        if !strength.is_finite() || strength <= 0.0 || !moment.is_finite() {
             return;
         }
         let shape = &self.shape;

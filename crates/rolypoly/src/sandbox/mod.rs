@@ -78,6 +78,9 @@ pub struct Sandbox {
     /// The device the GPU engine steps the balls on, once there is one
     /// (see [`Sandbox::use_device`]).
     device: Option<Device>,
+    /// The engine the simulation was built for (a change of
+    /// `solver.engine` waits for the restart).
+    engine: Engine,
 }
 
 /// A device, its queue and adapter: where the GPU engine runs.
@@ -119,7 +122,9 @@ impl Sandbox {
             view_pose: None,
             history: History::default(),
             device: None,
+            engine: Engine::Cpu,
         };
+        sandbox.engine = sandbox.scene.engine;
         sandbox.history.begin(sandbox.snapshot());
         sandbox
     }
@@ -224,6 +229,7 @@ impl Sandbox {
                         return Err(e);
                     }
                 };
+                self.engine = scene.engine;
                 self.scene_name.clone_from(name);
                 self.thrown = 0;
                 // A new line begins: what came before no longer matters.
@@ -295,6 +301,7 @@ impl Sandbox {
     pub fn restart_pending(&self) -> bool {
         self.sim.world.needs_rebuild(&self.scene.world)
             || *self.sim.fx.config() != self.scene.effects
+            || self.engine != self.scene.engine
     }
 
     /// I: the balls anew, thrown balls gone; the whole world built anew
@@ -304,9 +311,10 @@ impl Sandbox {
     }
 
     fn rebuild_or_reset(&mut self) -> Result<(), Refused> {
-        if self.restart_pending() || self.sim.on_gpu() != (self.scene.engine == Engine::Gpu) {
+        if self.restart_pending() {
             let world = World::new(self.scene.world.clone(), self.seed)?;
             self.sim = self.simulation(world)?;
+            self.engine = self.scene.engine;
         } else {
             self.sim.reset_balls()?;
         }
