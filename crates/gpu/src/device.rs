@@ -49,29 +49,16 @@ impl Compute {
             Some(chosen) => vec![chosen],
             None => vec![wgpu::Backends::PRIMARY, wgpu::Backends::GL],
         };
-        for backends in &attempts {
-            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-            desc.backends = *backends;
-            let instance = wgpu::Instance::new(desc);
-            let found = pollster::block_on(
-                instance.request_adapter(&wgpu::RequestAdapterOptions {
-                    power_preference: wgpu::PowerPreference::from_env()
-                        .unwrap_or(wgpu::PowerPreference::HighPerformance),
-                    force_fallback_adapter: false,
-                    compatible_surface: None,
-                    apply_limit_buckets: false,
-                }),
-            );
-            if let Ok(adapter) = found {
-                return Compute::open(&adapter);
-            }
+        match best_adapter(&attempts) {
+            Some(adapter) => Compute::open(&adapter),
+            None => Err(GpuError::NoAdapter {
+                backends: attempts
+                    .iter()
+                    .map(|b| format!("{b:?}"))
+                    .collect::<Vec<_>>()
+                    .join(", then "),
+            }),
         }
-        let backends = attempts
-            .iter()
-            .map(|b| format!("{b:?}"))
-            .collect::<Vec<_>>()
-            .join(", then ");
-        Err(GpuError::NoAdapter { backends })
     }
 
     /// Opens a device on `adapter` with the limits the engine needs.
@@ -96,6 +83,24 @@ impl Compute {
             adapter: name,
         })
     }
+}
+
+/// The best adapter of the first of `attempts` that has one, without a
+/// window: the one `WGPU_POWER_PREF` asks for, else the fastest.
+pub fn best_adapter(attempts: &[wgpu::Backends]) -> Option<wgpu::Adapter> {
+    attempts.iter().find_map(|backends| {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        desc.backends = *backends;
+        let instance = wgpu::Instance::new(desc);
+        pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference:
+                wgpu::PowerPreference::from_env().unwrap_or(wgpu::PowerPreference::HighPerformance),
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .ok()
+    })
 }
 
 /// Whether `adapter` runs compute shaders at all.

@@ -316,6 +316,8 @@ impl GpuBalls {
         };
         engine.upload(&balls, 0);
         engine.params.count = balls.len() as u32;
+        // Drawn as they start, before any step.
+        engine.write_instances();
         Ok(engine)
     }
 

@@ -34,7 +34,7 @@ mod profile;
 mod readback;
 mod scan;
 
-pub use device::{Compute, check_compute, describe, limits};
+pub use device::{Compute, best_adapter, check_compute, describe, limits};
 pub use engine::{BallState, GpuBalls, THROW_ROOM};
 pub use error::GpuError;
 pub use profile::{STAGES, Stage};

@@ -76,22 +76,8 @@ impl Gpu {
 
     /// Opens the best adapter of the first of `attempts` that has one.
     pub fn headless_on(attempts: &[wgpu::Backends]) -> Result<Gpu, RenderError> {
-        for backends in attempts {
-            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-            desc.backends = *backends;
-            let instance = wgpu::Instance::new(desc);
-            let found = pollster::block_on(
-                instance.request_adapter(&wgpu::RequestAdapterOptions {
-                    power_preference: wgpu::PowerPreference::from_env()
-                        .unwrap_or(wgpu::PowerPreference::HighPerformance),
-                    force_fallback_adapter: false,
-                    compatible_surface: None,
-                    apply_limit_buckets: false,
-                }),
-            );
-            if let Ok(adapter) = found {
-                return Gpu::open(adapter);
-            }
+        if let Some(adapter) = rolypoly_gpu::best_adapter(attempts) {
+            return Gpu::open(adapter);
         }
         let backends = attempts
             .iter()

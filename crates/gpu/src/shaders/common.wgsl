@@ -144,6 +144,11 @@ fn alive(i: u32) -> bool {
     return (state[i] & ALIVE) != 0u;
 }
 
+// Whether ball `i` is one in play that the solver works on this step.
+fn in_solver(i: u32) -> bool {
+    return i < params.count && (state[i] & (ALIVE | SOLVED)) == (ALIVE | SOLVED);
+}
+
 fn dt() -> f32 {
     return params.room_min.w;
 }

@@ -13,7 +13,7 @@
 @compute @workgroup_size(256)
 fn raise_impact_goals(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count || (state[i] & (ALIVE | SOLVED)) != (ALIVE | SOLVED) {
+    if !in_solver(i) {
         return;
     }
     var bouncing = 0u;
@@ -70,7 +70,7 @@ fn impact_impulse(goal: f32, total: f32, speed: f32, k: f32, share: f32) -> f32 
 @compute @workgroup_size(256)
 fn solve_impacts(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count || (state[i] & (ALIVE | SOLVED)) != (ALIVE | SOLVED) {
+    if !in_solver(i) {
         return;
     }
     let p = pos[i].xyz;

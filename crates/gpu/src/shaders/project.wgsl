@@ -8,7 +8,7 @@
 @compute @workgroup_size(256)
 fn find_overlaps(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count || (state[i] & (ALIVE | SOLVED)) != (ALIVE | SOLVED) {
+    if !in_solver(i) {
         return;
     }
     let p = pos[i].xyz;
@@ -48,7 +48,7 @@ fn find_overlaps(@builtin(global_invocation_id) id: vec3<u32>) {
 @compute @workgroup_size(256)
 fn apply_shifts(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count || (state[i] & (ALIVE | SOLVED)) != (ALIVE | SOLVED) {
+    if !in_solver(i) {
         return;
     }
     let r = pos[i].w;

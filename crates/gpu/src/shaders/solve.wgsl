@@ -40,7 +40,7 @@ fn solve_pair(a: u32, b: u32, total: vec4<f32>, share: f32) -> PairImpulse {
 @compute @workgroup_size(256)
 fn solve_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count || (state[i] & (ALIVE | SOLVED)) != (ALIVE | SOLVED) {
+    if !in_solver(i) {
         return;
     }
     let p = pos[i].xyz;
@@ -119,7 +119,7 @@ fn solve_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
 @compute @workgroup_size(256)
 fn apply_deltas(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count || (state[i] & (ALIVE | SOLVED)) != (ALIVE | SOLVED) {
+    if !in_solver(i) {
         return;
     }
     vel[i] = vec4<f32>(vel[i].xyz + delta[i].xyz, vel[i].w);
