@@ -258,7 +258,7 @@ fn energy() -> Result<String, String> {
     )
 }
 
-/// Steps per second against ball count, both engines, with friction
+/// Steps per second against ball count, each engine, with friction
 /// between balls and without, from `csv`
 /// (`balls,engine,ball_friction,steps_per_second` lines under a header).
 /// Each engine has its colour; a pit with friction between balls is drawn
@@ -332,7 +332,7 @@ fn steps_per_second(csv: &str) -> Result<String, String> {
         })
         .collect();
     plot(
-        "Steps per second against ball count (the ball pit, 2 threads)",
+        "Ball pit steps per second (2 threads; the GPU engine on lavapipe)",
         ("balls", (x_lo * 0.8..x_hi * 1.25).log_scale()),
         ("steps per second", (y_lo * 0.5..y_hi * 2.0).log_scale()),
         &series,
