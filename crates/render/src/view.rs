@@ -230,10 +230,9 @@ pub fn particle_color(kind: ParticleKind) -> Vec3 {
 }
 
 /// The balls as the GPU engine wrote them, on the GPU: `count` instances
-/// of 32 bytes (centre and radius, colour, a pad), as [`BallInstance`]
-/// lays them out, in a vertex buffer of the renderer's own device.
-///
-/// [`BallInstance`]: crate::instances::BallInstance
+/// of 32 bytes (centre and radius, colour, a pad), as the renderer's own
+/// ball instances are laid out, in a vertex buffer of the renderer's
+/// device.
 #[derive(Clone, Debug)]
 pub struct GpuBallBuffer {
     /// The instances.
