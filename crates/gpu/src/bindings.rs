@@ -4,7 +4,7 @@
 use crate::layout::{Body, Catch, EVENT_CAPACITY, SLOTS};
 
 /// Bindings in the group: the uniform and the storage buffers.
-pub const BINDINGS: u32 = 25;
+pub const BINDINGS: u32 = 27;
 
 /// Each buffer, named by what it holds (see `common.wgsl`).
 pub struct Buffers {
@@ -33,6 +33,8 @@ pub struct Buffers {
     pub event_count: wgpu::Buffer,
     pub slot_impact: wgpu::Buffer,
     pub own_impact: wgpu::Buffer,
+    pub cell_speed: wgpu::Buffer,
+    pub near_speed: wgpu::Buffer,
 }
 
 /// How many of each the buffers hold.
@@ -119,6 +121,8 @@ impl Buffers {
             event_count: make("catch count", 16, U::STORAGE | U::COPY_SRC | U::COPY_DST),
             slot_impact: make("contact impacts", 8 * SLOTS * n, U::STORAGE),
             own_impact: make("wall and body impacts", 32 * n, U::STORAGE),
+            cell_speed: make("fastest in each cell", 4 * (sizes.cells + 1), U::STORAGE),
+            near_speed: make("fastest near each ball", 4 * n, U::STORAGE),
         }
     }
 
@@ -150,6 +154,8 @@ impl Buffers {
             &self.event_count,
             &self.slot_impact,
             &self.own_impact,
+            &self.cell_speed,
+            &self.near_speed,
         ]
     }
 

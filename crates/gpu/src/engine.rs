@@ -3,6 +3,7 @@
 
 use crate::GpuError;
 use crate::bindings::{Buffers, Sizes};
+use crate::colours::{COLOURS, CellColours};
 use crate::device::{STORAGE_BUFFERS, describe};
 use crate::layout::{Body, Catch, EVENT_CAPACITY, FIREBALL, MAX_ITEMS, Params, groups};
 use crate::passes::Passes;
@@ -14,10 +15,6 @@ use rolypoly_physics::{Balls, Event, EventKind, Tint, World};
 
 /// Thrown balls a run can add on top of its scene's.
 pub const THROW_ROOM: u64 = 1024;
-/// Jacobi sweeps of the velocity solver for each of the scene's
-/// `solver.iterations`: a Jacobi sweep carries an impulse one contact
-/// further, as a Gauss-Seidel sweep does, but with a smaller share.
-const SWEEPS_PER_ITERATION: u32 = 4;
 /// Impact rounds (see `impacts.wgsl`): a ball struck in one round strikes
 /// its neighbour in the next.
 const ROUNDS: u32 = 3;
@@ -145,6 +142,7 @@ pub struct GpuBalls {
     buffers: Buffers,
     bind_group: wgpu::BindGroup,
     passes: Passes,
+    colours: CellColours,
     scan: Scan,
     params: Params,
     /// Balls the buffers hold room for.
@@ -223,7 +221,8 @@ impl GpuBalls {
         let layout = Buffers::layout(&device);
         let buffers = Buffers::new(&device, &sizes);
         let bind_group = buffers.bind_group(&device, &layout);
-        let passes = Passes::new(&device, &layout);
+        let colours = CellColours::new(&device, [dims.x as u32, dims.y as u32, dims.z as u32]);
+        let passes = Passes::new(&device, &layout, &colours.layout);
         let scan = Scan::new(&device, &buffers.cell_start, cells + 1);
 
         let palette_layout = PaletteLayout {
@@ -302,6 +301,7 @@ impl GpuBalls {
             buffers,
             bind_group,
             passes,
+            colours,
             scan,
             params,
             capacity,
@@ -309,7 +309,7 @@ impl GpuBalls {
             tumblers,
             palette,
             palette_layout,
-            solve_sweeps: SWEEPS_PER_ITERATION * solver.iterations.max(1) as u32,
+            solve_sweeps: solver.iterations.max(1) as u32,
             report,
             catches: Vec::new(),
             steps: 0,
@@ -554,6 +554,7 @@ impl GpuBalls {
             dispatch(&mut pass, &p.sort_cells, self.cells);
         }
         pass(encoder, Stage::Contacts, &mut |pass| {
+            dispatch(pass, &p.gauge_near_speed, balls);
             dispatch(pass, &p.find_contacts, balls)
         });
         pass(encoder, Stage::Impacts, &mut |pass| {
@@ -568,8 +569,10 @@ impl GpuBalls {
         pass(encoder, Stage::Solve, &mut |pass| {
             dispatch(pass, &p.warm_start, balls);
             for _ in 0..self.solve_sweeps {
-                dispatch(pass, &p.solve_contacts, balls);
-                dispatch(pass, &p.apply_deltas, balls);
+                for q in 0..COLOURS {
+                    self.colours.bind(pass, q);
+                    dispatch(pass, &p.solve_cell, self.colours.cells_per_colour);
+                }
             }
         });
         pass(encoder, Stage::Push, &mut |pass| {

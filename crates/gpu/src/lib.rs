@@ -25,6 +25,7 @@
 #![warn(missing_docs)]
 
 mod bindings;
+mod colours;
 mod device;
 mod engine;
 mod error;

@@ -19,11 +19,12 @@ pub struct Passes {
     pub count_cells: wgpu::ComputePipeline,
     pub place_in_cells: wgpu::ComputePipeline,
     pub sort_cells: wgpu::ComputePipeline,
+    pub gauge_near_speed: wgpu::ComputePipeline,
     pub find_contacts: wgpu::ComputePipeline,
     pub warm_start: wgpu::ComputePipeline,
     pub raise_impact_goals: wgpu::ComputePipeline,
     pub solve_impacts: wgpu::ComputePipeline,
-    pub solve_contacts: wgpu::ComputePipeline,
+    pub solve_cell: wgpu::ComputePipeline,
     pub apply_deltas: wgpu::ComputePipeline,
     pub fly: wgpu::ComputePipeline,
     pub find_overlaps: wgpu::ComputePipeline,
@@ -33,11 +34,21 @@ pub struct Passes {
 }
 
 impl Passes {
-    pub fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> Passes {
+    pub fn new(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        colour_layout: &wgpu::BindGroupLayout,
+    ) -> Passes {
         let common = include_str!("shaders/common.wgsl");
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("balls"),
             bind_group_layouts: &[Some(layout)],
+            immediate_size: 0,
+        });
+        // The solver's sweeps also read which colour of cells they take.
+        let coloured_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("balls by colour of cell"),
+            bind_group_layouts: &[Some(layout), Some(colour_layout)],
             immediate_size: 0,
         });
         let modules: Vec<wgpu::ShaderModule> = SOURCES
@@ -49,26 +60,28 @@ impl Passes {
                 })
             })
             .collect();
-        let pipeline = |file: usize, entry: &str| {
+        let pipeline_in = |layout: &wgpu::PipelineLayout, file: usize, entry: &str| {
             device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
-                layout: Some(&pipeline_layout),
+                layout: Some(layout),
                 module: &modules[file],
                 entry_point: Some(entry),
                 compilation_options: Default::default(),
                 cache: None,
             })
         };
+        let pipeline = |file: usize, entry: &str| pipeline_in(&pipeline_layout, file, entry);
         Passes {
             clear_cells: pipeline(0, "clear_cells"),
             count_cells: pipeline(0, "count_cells"),
             place_in_cells: pipeline(0, "place_in_cells"),
             sort_cells: pipeline(0, "sort_cells"),
+            gauge_near_speed: pipeline(1, "gauge_near_speed"),
             find_contacts: pipeline(1, "find_contacts"),
             warm_start: pipeline(1, "warm_start"),
             raise_impact_goals: pipeline(2, "raise_impact_goals"),
             solve_impacts: pipeline(2, "solve_impacts"),
-            solve_contacts: pipeline(3, "solve_contacts"),
+            solve_cell: pipeline_in(&coloured_layout, 3, "solve_cell"),
             apply_deltas: pipeline(3, "apply_deltas"),
             fly: pipeline(4, "fly"),
             find_overlaps: pipeline(5, "find_overlaps"),

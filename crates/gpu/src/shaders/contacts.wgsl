@@ -6,6 +6,29 @@
 // start), which `warm_start` then applies, with gravity, to the velocities
 // the solver corrects.
 
+// The fastest ball near each: a blow passed down a column within the step
+// can set a ball moving at the speed of the fastest ball around it.
+@compute @workgroup_size(256)
+fn gauge_near_speed(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = ball_index(id);
+    if i >= params.count {
+        return;
+    }
+    let home = cell_coords(pos[i].xyz);
+    var fastest = 0u;
+    for (var dz = -1; dz <= 1; dz++) {
+        for (var dy = -1; dy <= 1; dy++) {
+            for (var dx = -1; dx <= 1; dx++) {
+                let c = home + vec3<i32>(dx, dy, dz);
+                if all(c >= vec3<i32>(0)) && all(c < vec3<i32>(params.dims.xyz)) {
+                    fastest = max(fastest, atomicLoad(&cell_speed[cell_id(c)]));
+                }
+            }
+        }
+    }
+    near_speed[i] = bitcast<f32>(fastest);
+}
+
 @compute @workgroup_size(256)
 fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
@@ -74,7 +97,12 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
                         n = d / dist;
                     }
                     let approach = max(0.0, -dot(v - vel[j].xyz, n));
-                    if gap >= max(margin + approach * step, params.more.z) {
+                    // Within reach of any approach the step may bring: a
+                    // ball struck within it (by a blow passed down a column,
+                    // or off the floor) may turn on a ball it does not
+                    // approach yet, as fast as the fastest ball near either.
+                    let reach = (near_speed[i] + near_speed[j] + params.room_max.w * step) * step;
+                    if gap >= max(margin + reach, params.more.z) {
                         continue;
                     }
                     // Ranked by the gap the step would leave: the pairs that
@@ -123,6 +151,10 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     s |= found << SLOT_SHIFT;
 
+    // How far a ball struck within the step may move: as fast as the
+    // fastest ball near it.
+    let struck = (near_speed[i] + params.room_max.w * step) * step;
+
     // The nearest body within reach.
     var best = NONE;
     var best_gap = 0.0;
@@ -148,7 +180,7 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             continue;
         }
-        if gap < margin + approach * step && (best == NONE || gap < best_gap) {
+        if gap < margin + max(approach * step, struck) && (best == NONE || gap < best_gap) {
             best = b;
             best_gap = gap;
         }
@@ -166,7 +198,7 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
             let wall = nearest_wall(p, r, axis);
             let closing = -dot(v, wall.xyz);
             let approach = max(0.0, closing);
-            if wall.w < margin + approach * step {
+            if wall.w < margin + max(approach * step, struck) {
                 s |= 1u << (WALL_SHIFT + axis);
                 var f = old_walls[axis];
                 if -closing > params.grid.z + params.room_max.w * step {
@@ -196,6 +228,9 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
         fold_body_impact(i);
         for (var k = 0u; k < slot_count(state[i]); k++) {
             let j = slot_other[i * SLOTS + k];
+            if mirror_slot(i, j) == NONE {
+                continue;
+            }
             let a = min(i, j);
             let n = direction(pos[a].xyz - pos[i + j - a].xyz);
             let total = slot_impulse[i * SLOTS + k];

@@ -7,6 +7,7 @@ fn clear_cells(@builtin(global_invocation_id) id: vec3<u32>) {
     let c = ball_index(id);
     if c <= params.cells {
         atomicStore(&cell_fill[c], 0u);
+        atomicStore(&cell_speed[c], 0u);
     }
 }
 
@@ -33,6 +34,7 @@ fn place_in_cells(@builtin(global_invocation_id) id: vec3<u32>) {
     }
     let c = cell_of[i];
     cell_balls[cell_start[c] + atomicAdd(&cell_fill[c], 1u)] = i;
+    atomicMax(&cell_speed[c], bitcast<u32>(length(vel[i].xyz)));
 }
 
 @compute @workgroup_size(256)
