@@ -10,14 +10,17 @@
 //! 2. **contacts**: each ball keeps its nearest balls within reach, the
 //!    nearest tumbler sphere, the nearest walls; the fireball takes the
 //!    balls it reaches, if the scene says so;
-//! 3. **solve**: Jacobi sweeps of impulses, normal and friction, each ball
-//!    gathering its own change (no float atomics: a pair's impulse is
-//!    worked out alike from both sides);
-//! 4. **report**: the tumblers' pushes, summed in a fixed order;
-//! 5. **flight**: balls in contact move at their solved velocity, lone
+//! 3. **impacts**: rounds of Jacobi sweeps of bounces, so a blow passes
+//!    from ball to ball within the step;
+//! 4. **solve**: Gauss-Seidel sweeps of impulses, normal and friction, run
+//!    in 27 passes, one for each colour of cell (`colours`): cells three
+//!    apart share no ball, so their threads never write the same one, and
+//!    there are no float atomics;
+//! 5. **report**: the tumblers' pushes, summed in a fixed order;
+//! 6. **flight**: balls in contact move at their solved velocity, lone
 //!    balls along their exact parabola, bouncing exactly off the walls;
-//! 6. **project**: overlaps pushed out by position;
-//! 7. the renderer's ball instances written, on the GPU.
+//! 7. **project**: overlaps pushed out by position;
+//! 8. the renderer's ball instances written, on the GPU.
 //!
 //! The same scene, seed and inputs give the same bits on rerun on the same
 //! adapter and driver.

@@ -19,29 +19,38 @@ fn a_pit_of_balls_settles_without_overlap_or_escape() {
         config.room.restitution = 0.8;
         config.balls.speed_max = 1.0;
         config.balls.start_fill = 0.6;
+        // The bench's step, twice the default: balls fall further into
+        // each other, and a blow passes down a column within one step.
+        config.solver.dt = 1.0 / 60.0;
         let (mut world, mut balls) = build(&compute, config, seed);
         let (min, max) = (world.room().min, world.room().max);
         let started = Instant::now();
         let mut worst: f64 = 0.0;
-        for s in 0..1200 {
+        let steps = 600;
+        for s in 1..=steps {
             step(&mut world, &mut balls);
-            if s % 200 == 199 {
+            // Every few steps while the pile falls and lands, where the
+            // deepest overlaps come and go within a step or two.
+            if (s <= 120 && s % 3 == 0) || s % 100 == 0 {
                 let state = balls.read().unwrap();
                 let (overlap, escaped) = overlap_and_escapes(&state, min, max);
-                eprintln!(
-                    "{count} balls t {:.2}: overlap {:.1} mm, escaped {escaped}, rest {:.3}, ke {:.2}",
-                    (s + 1) as f64 / 120.0,
-                    overlap * 1e3,
-                    share_at_rest(&state, 0.05),
-                    state.kinetic_energy()
-                );
+                if s % 60 == 0 {
+                    eprintln!(
+                        "{count} balls t {:.2}: overlap {:.1} mm (worst {:.1}), escaped {escaped}, rest {:.3}, ke {:.2}",
+                        s as f64 / 60.0,
+                        overlap * 1e3,
+                        worst.max(overlap) * 1e3,
+                        share_at_rest(&state, 0.05),
+                        state.kinetic_energy()
+                    );
+                }
                 worst = worst.max(overlap);
                 assert_eq!(escaped, 0);
             }
         }
         eprintln!(
             "{count} balls: {:.1} steps/s",
-            1200.0 / started.elapsed().as_secs_f64()
+            f64::from(steps) / started.elapsed().as_secs_f64()
         );
         let state = balls.read().unwrap();
         assert!(worst < 0.010, "{count} balls overlap {worst}");
