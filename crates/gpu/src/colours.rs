@@ -1,6 +1,7 @@
 //! The 27 colours of grid cells that let the contact solver sweep by
 //! Gauss-Seidel on many threads at once (see `shaders/solve.wgsl`): a pass
-//! takes the cells whose coordinates are one colour's offsets modulo 3.
+//! takes the cells whose coordinates are one colour's offsets modulo 3
+//! (`colour_offset` there).
 
 /// Colours of cells: three offsets along each axis.
 pub const COLOURS: u32 = 27;
@@ -9,7 +10,7 @@ pub const COLOURS: u32 = 27;
 /// dynamic offset to be aligned to.
 const STRIDE: u64 = 256;
 
-/// Each colour's offsets, in one uniform buffer read at a dynamic offset.
+/// Each colour's number, in one uniform buffer read at a dynamic offset.
 pub struct CellColours {
     pub layout: wgpu::BindGroupLayout,
     group: wgpu::BindGroup,
@@ -23,9 +24,8 @@ impl CellColours {
         use wgpu::util::DeviceExt;
         let mut bytes = vec![0u8; (STRIDE * u64::from(COLOURS)) as usize];
         for q in 0..COLOURS {
-            let offset = [q % 3, (q / 3) % 3, q / 9, 0];
             let at = (STRIDE * u64::from(q)) as usize;
-            bytes[at..at + 16].copy_from_slice(bytemuck::cast_slice(&offset));
+            bytes[at..at + 4].copy_from_slice(bytemuck::bytes_of(&q));
         }
         let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("cell colours"),

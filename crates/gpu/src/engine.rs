@@ -6,7 +6,7 @@ use crate::bindings::{Buffers, Sizes};
 use crate::colours::{COLOURS, CellColours};
 use crate::device::{STORAGE_BUFFERS, describe};
 use crate::layout::{Body, Catch, EVENT_CAPACITY, FIREBALL, MAX_ITEMS, Params, groups};
-use crate::passes::Passes;
+use crate::passes::{Passes, SweepCounts};
 use crate::profile::{Stage, StageTimer};
 use crate::readback::read_buffer;
 use crate::scan::Scan;
@@ -26,6 +26,9 @@ const SWEEPS_PER_ROUND: u32 = 12;
 const REACH_RADII: f64 = 0.25;
 /// Sweeps that push overlapping balls apart after they move.
 const SHIFT_SWEEPS: u32 = 16;
+/// Worlds of up to this many balls sweep in one workgroup (see
+/// `small.wgsl`), where the dispatches would cost more than their work.
+const SMALL_WORLD_BALLS: u32 = 2048;
 /// How much of what a sweep asks each contact applies, over its share.
 const RELAXATION: f32 = 1.0;
 /// The speculative margin, in the largest ball's radii: contacts this near
@@ -151,7 +154,9 @@ pub struct GpuBalls {
     tumblers: usize,
     palette: Vec<[f32; 4]>,
     palette_layout: PaletteLayout,
-    solve_sweeps: u32,
+    sweeps: SweepCounts,
+    /// Worlds of up to this many balls sweep in one workgroup.
+    small_world_balls: u32,
     /// The small buffer the step's pushes and catches come back in.
     report: wgpu::Buffer,
     catches: Vec<Event>,
@@ -222,7 +227,13 @@ impl GpuBalls {
         let buffers = Buffers::new(&device, &sizes);
         let bind_group = buffers.bind_group(&device, &layout);
         let colours = CellColours::new(&device, [dims.x as u32, dims.y as u32, dims.z as u32]);
-        let passes = Passes::new(&device, &layout, &colours.layout);
+        let sweeps = SweepCounts {
+            impact_rounds: ROUNDS,
+            impact_sweeps: SWEEPS_PER_ROUND,
+            solve_sweeps: config.solver.iterations.max(1) as u32,
+            shift_sweeps: SHIFT_SWEEPS,
+        };
+        let passes = Passes::new(&device, &layout, &colours.layout, &sweeps);
         let scan = Scan::new(&device, &buffers.cell_start, cells + 1);
 
         let palette_layout = PaletteLayout {
@@ -309,7 +320,8 @@ impl GpuBalls {
             tumblers,
             palette,
             palette_layout,
-            solve_sweeps: solver.iterations.max(1) as u32,
+            sweeps,
+            small_world_balls: SMALL_WORLD_BALLS,
             report,
             catches: Vec::new(),
             steps: 0,
@@ -557,10 +569,19 @@ impl GpuBalls {
             dispatch(pass, &p.gauge_near_speed, balls);
             dispatch(pass, &p.find_contacts, balls)
         });
+        let small = self.params.count <= self.small_world_balls;
+        let in_one_group = |pass: &mut wgpu::ComputePass, pipeline: &wgpu::ComputePipeline| {
+            pass.set_pipeline(pipeline);
+            pass.dispatch_workgroups(1, 1, 1);
+        };
+        let counts = &self.sweeps;
         pass(encoder, Stage::Impacts, &mut |pass| {
-            for _ in 0..ROUNDS {
+            if small {
+                return in_one_group(pass, &p.impacts_in_one_group);
+            }
+            for _ in 0..counts.impact_rounds {
                 dispatch(pass, &p.raise_impact_goals, balls);
-                for _ in 0..SWEEPS_PER_ROUND {
+                for _ in 0..counts.impact_sweeps {
                     dispatch(pass, &p.solve_impacts, balls);
                     dispatch(pass, &p.apply_deltas, balls);
                 }
@@ -568,7 +589,10 @@ impl GpuBalls {
         });
         pass(encoder, Stage::Solve, &mut |pass| {
             dispatch(pass, &p.warm_start, balls);
-            for _ in 0..self.solve_sweeps {
+            if small {
+                return in_one_group(pass, &p.solve_in_one_group);
+            }
+            for _ in 0..counts.solve_sweeps {
                 for q in 0..COLOURS {
                     self.colours.bind(pass, q);
                     dispatch(pass, &p.solve_cell, self.colours.cells_per_colour);
@@ -585,7 +609,10 @@ impl GpuBalls {
             dispatch(pass, &p.fly, balls)
         });
         pass(encoder, Stage::Overlaps, &mut |pass| {
-            for _ in 0..SHIFT_SWEEPS {
+            if small {
+                return in_one_group(pass, &p.overlaps_in_one_group);
+            }
+            for _ in 0..counts.shift_sweeps {
                 dispatch(pass, &p.find_overlaps, balls);
                 dispatch(pass, &p.apply_shifts, balls);
             }
@@ -614,6 +641,13 @@ impl GpuBalls {
             }
         }
         Ok(Some(sum.map(|s| s / f64::from(steps.max(1)))))
+    }
+
+    /// Sweeps worlds of up to `balls` balls in one workgroup from now on
+    /// (normally up to 2048), so that tests and the bench can hold the two
+    /// ways of sweeping against each other.
+    pub fn sweep_in_one_group_up_to(&mut self, balls: u32) {
+        self.small_world_balls = balls;
     }
 
     /// Waits until the GPU has done every step submitted.
@@ -799,7 +833,7 @@ mod tests {
         let roomy = wgpu::Limits {
             max_storage_buffers_per_shader_stage: 32,
             max_buffers_and_acceleration_structures_per_shader_stage: 32,
-            max_storage_buffer_binding_size: 1 << 27,
+            max_storage_buffer_binding_size: 1 << 28,
             max_buffer_size: 1 << 31,
             ..wgpu::Limits::default()
         };
@@ -814,11 +848,11 @@ mod tests {
         .to_string();
         assert!(err.contains("storage buffers per shader stage"), "{err}");
         assert!(err.contains("--engine cpu"), "{err}");
-        // 128 MiB bindings hold a million balls' contacts, not two million.
+        // 256 MiB bindings hold a million balls' contacts, not two million.
         let err = check_limits(&roomy, &sizes(2_000_000), "test")
             .unwrap_err()
             .to_string();
         assert!(err.contains("storage buffer binding size"), "{err}");
-        assert!(err.contains("256000000"), "{err}");
+        assert!(err.contains("384000000"), "{err}");
     }
 }

@@ -6,8 +6,11 @@ use bytemuck::{Pod, Zeroable};
 
 /// Threads in a workgroup, in every pass (`WORKGROUP` in the WGSL).
 pub const WORKGROUP: u32 = 256;
-/// Contacts a ball keeps with other balls in one step (`SLOTS`).
-pub const SLOTS: u64 = 8;
+/// Contacts a ball keeps with other balls in one step (`SLOTS` in the
+/// WGSL, written there from here).
+pub const SLOTS: u64 = 12;
+// A ball's state word counts its contacts in four bits.
+const _: () = assert!(SLOTS < 16);
 /// The most workgroups a dispatch has along one dimension; wider ones
 /// spill into y (`ball_index` in the WGSL).
 pub const MAX_GROUPS: u32 = 65_535;

@@ -152,7 +152,7 @@ fn fast_balls_and_the_fireball_stay_finite_and_in_the_room() {
     let steps = std::env::var("ROLYPOLY_NAN_STEPS")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(20_000u32);
+        .unwrap_or(100_000u32);
     for s in 0..steps {
         step(&mut world, &mut balls);
         if s % 1000 == 999 || s + 1 == steps {

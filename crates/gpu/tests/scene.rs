@@ -42,6 +42,56 @@ fn a_rerun_repeats_every_bit() {
     assert_ne!(first.0, run(4).0, "another seed, another run");
 }
 
+/// The largest change of velocity between two states of the same balls.
+fn largest_difference(a: &rolypoly_gpu::BallState, b: &rolypoly_gpu::BallState) -> f32 {
+    a.velocities
+        .iter()
+        .zip(&b.velocities)
+        .map(|(u, v)| (*u - *v).length())
+        .fold(0.0, f32::max)
+}
+
+#[test]
+fn a_small_world_swept_in_one_workgroup_steps_as_in_many() {
+    let compute = compute();
+    for (count, side, seed) in [(300, 2.0, 2), (1500, 4.0, 5)] {
+        // A pit filling its floor, so that every colour of cell has
+        // contacts to sweep.
+        let mut config = empty_room(DVec3::new(side, 2.0, side), count);
+        config.balls.radius = 0.1;
+        config.balls.friction = 0.5;
+        config.balls.start_fill = 0.6;
+        let (mut world_a, mut a) = build(&compute, config.clone(), seed);
+        let (mut world_b, mut b) = build(&compute, config, seed);
+        a.sweep_in_one_group_up_to(0);
+        b.sweep_in_one_group_up_to(0);
+        // Into the thick of the fall, the same way.
+        for _ in 0..90 {
+            step(&mut world_a, &mut a);
+            step(&mut world_b, &mut b);
+        }
+        let before = a.read().unwrap();
+        assert_eq!(bits(&before), bits(&b.read().unwrap()));
+        // One step each way. The two are compiled apart, and an adapter
+        // may round a multiply-add fused in one and not in the other:
+        // they agree to rounding, not to the bit.
+        b.sweep_in_one_group_up_to(u32::MAX);
+        step(&mut world_a, &mut a);
+        step(&mut world_b, &mut b);
+        let (after_a, after_b) = (a.read().unwrap(), b.read().unwrap());
+        let moved = largest_difference(&before, &after_a);
+        let apart = largest_difference(&after_a, &after_b);
+        assert!(
+            moved > 0.1,
+            "{count} balls: the step changed little ({moved} m/s)"
+        );
+        assert!(
+            apart < 1e-4,
+            "{count} balls: one workgroup and many dispatches part by {apart} m/s"
+        );
+    }
+}
+
 #[test]
 fn the_fireball_catches_the_balls_it_meets() {
     let compute = compute();

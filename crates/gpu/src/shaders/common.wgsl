@@ -2,8 +2,8 @@
 // in one bind group (see `bindings.rs`, which lists them in this order).
 
 const WORKGROUP: u32 = 256u;
-// Contacts a ball keeps with other balls in one step: its nearest.
-const SLOTS: u32 = 8u;
+// SLOTS, the contacts a ball keeps with other balls in one step (its
+// nearest), is written above this file from `layout.rs`.
 const NONE: u32 = 0xffffffffu;
 // A ball's state word: bit 0 alive; bit 1 in the solver (it has a ball or
 // a body within reach); bits 4-7 how many balls it touches; bits 8-10 which

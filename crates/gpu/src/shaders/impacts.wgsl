@@ -12,7 +12,10 @@
 
 @compute @workgroup_size(256)
 fn raise_impact_goals(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
+    raise_impact_goals_of(ball_index(id));
+}
+
+fn raise_impact_goals_of(i: u32) {
     if !in_solver(i) {
         return;
     }
@@ -69,7 +72,10 @@ fn impact_impulse(goal: f32, total: f32, speed: f32, k: f32, share: f32) -> f32 
 
 @compute @workgroup_size(256)
 fn solve_impacts(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
+    solve_impacts_of(ball_index(id));
+}
+
+fn solve_impacts_of(i: u32) {
     if !in_solver(i) {
         return;
     }

@@ -7,7 +7,10 @@
 
 @compute @workgroup_size(256)
 fn find_overlaps(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
+    find_overlaps_of(ball_index(id));
+}
+
+fn find_overlaps_of(i: u32) {
     if !in_solver(i) {
         return;
     }
@@ -47,7 +50,10 @@ fn find_overlaps(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(256)
 fn apply_shifts(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
+    apply_shifts_of(ball_index(id));
+}
+
+fn apply_shifts_of(i: u32) {
     if !in_solver(i) {
         return;
     }

@@ -15,17 +15,25 @@
 // Balls' weights a tumbler may hold up through one ball.
 const BODY_WEIGHTS: f32 = 4.0;
 
-// The colour of cells a pass works on, as its offset in each axis.
+// The colour of cells a pass works on (x; see `colour_offset`).
 struct Colour {
-    offset: vec4<u32>,
+    index: vec4<u32>,
 }
 @group(1) @binding(0) var<uniform> colour: Colour;
 
-// The cell that thread `id` works on in this colour's pass, or NONE.
-fn colour_cell(id: vec3<u32>) -> u32 {
-    let t = ball_index(id);
-    let o = colour.offset.xyz;
-    // Cells of this colour along each axis.
+// Colour `q`'s offset along each axis.
+fn colour_offset(q: u32) -> vec3<u32> {
+    return vec3<u32>(q % 3u, (q / 3u) % 3u, q / 9u);
+}
+
+// Cells of the colour of offset `o`.
+fn colour_cells(o: vec3<u32>) -> u32 {
+    let span = (params.dims.xyz + 2u - o) / 3u;
+    return span.x * span.y * span.z;
+}
+
+// The `t`-th cell of the colour of offset `o`, or NONE past its last.
+fn colour_cell(t: u32, o: vec3<u32>) -> u32 {
     let span = (params.dims.xyz + 2u - o) / 3u;
     if t >= span.x * span.y * span.z {
         return NONE;
@@ -128,10 +136,13 @@ fn solve_body(i: u32) {
 
 @compute @workgroup_size(256)
 fn solve_cell(@builtin(global_invocation_id) id: vec3<u32>) {
-    let c = colour_cell(id);
-    if c == NONE {
-        return;
+    let c = colour_cell(ball_index(id), colour_offset(colour.index.x));
+    if c != NONE {
+        solve_cell_at(c);
     }
+}
+
+fn solve_cell_at(c: u32) {
     for (var at = cell_start[c]; at < cell_start[c + 1u]; at++) {
         let i = cell_balls[at];
         if !in_solver(i) {
@@ -154,7 +165,10 @@ fn solve_cell(@builtin(global_invocation_id) id: vec3<u32>) {
 
 @compute @workgroup_size(256)
 fn apply_deltas(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
+    apply_deltas_of(ball_index(id));
+}
+
+fn apply_deltas_of(i: u32) {
     if !in_solver(i) {
         return;
     }
