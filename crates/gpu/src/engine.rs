@@ -28,7 +28,7 @@ const REACH_RADII: f64 = 0.25;
 const SHIFT_SWEEPS: u32 = 16;
 /// Worlds of up to this many balls sweep in one workgroup (see
 /// `small.wgsl`), where the dispatches would cost more than their work.
-const SMALL_WORLD_BALLS: u32 = 2048;
+const SMALL_WORLD_BALLS: u32 = 1024;
 /// How much of what a sweep asks each contact applies, over its share.
 const RELAXATION: f32 = 1.0;
 /// The speculative margin, in the largest ball's radii: contacts this near
@@ -644,7 +644,7 @@ impl GpuBalls {
     }
 
     /// Sweeps worlds of up to `balls` balls in one workgroup from now on
-    /// (normally up to 2048), so that tests and the bench can hold the two
+    /// (normally up to 1024), so that tests and the bench can hold the two
     /// ways of sweeping against each other.
     pub fn sweep_in_one_group_up_to(&mut self, balls: u32) {
         self.small_world_balls = balls;

@@ -23,7 +23,7 @@
 //! 8. the renderer's ball instances written, on the GPU.
 //!
 //! Each sweep of stages 3, 4 and 7 is a dispatch of its own, some three
-//! hundred a step; a world of up to 2048 balls runs each of those stages
+//! hundred a step; a world of up to 1024 balls runs each of those stages
 //! in one workgroup instead, with barriers between its sweeps
 //! (`small.wgsl`): the same sweeps, to rounding.
 //!

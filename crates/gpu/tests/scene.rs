@@ -1,6 +1,6 @@
 //! What a user sees the GPU engine do: reruns that repeat to the bit, the
 //! fireball catching balls, tumblers shoved by balls and righting
-//! themselves, a thrown ball, a restart.
+//! themselves, a thrown ball, a restart, the default scene at rest.
 
 mod common;
 
@@ -215,4 +215,33 @@ fn a_thrown_ball_flies_and_a_restart_takes_it_away() {
     assert_ne!(after.positions, before.positions, "new random places");
     let (overlap, escaped) = overlap_and_escapes(&after, world.room().min, world.room().max);
     assert!(overlap < 1e-6 && escaped == 0, "{overlap} {escaped}");
+}
+
+#[test]
+fn the_default_scene_comes_to_rest() {
+    let compute = compute();
+    for seed in [1, 2, 3] {
+        let (mut world, mut balls) = build(&compute, WorldConfig::default(), seed);
+        let fastest = |balls: &rolypoly_gpu::GpuBalls| {
+            let state = balls.read().unwrap();
+            state
+                .velocities
+                .iter()
+                .map(|v| v.length())
+                .fold(0.0, f32::max)
+        };
+        // Thrown in at speed, the balls are still moving after a second.
+        for _ in 0..120 {
+            step(&mut world, &mut balls);
+        }
+        assert!(fastest(&balls) > 0.5, "seed {seed}");
+        for _ in 120..2400 {
+            step(&mut world, &mut balls);
+        }
+        let last = fastest(&balls);
+        assert!(
+            last < 1e-3,
+            "seed {seed}: a ball still moves at {last} m/s after 20 s"
+        );
+    }
 }
