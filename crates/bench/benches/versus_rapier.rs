@@ -28,7 +28,7 @@
 use glam::DVec3;
 use rolypoly_bench::gpu_pit::GpuPit;
 use rolypoly_bench::ours::OurPit;
-use rolypoly_bench::pit::{Pit, PitEngine};
+use rolypoly_bench::pit::{FRICTION, Pit, PitEngine};
 use rolypoly_bench::quality::{Quality, measure};
 use rolypoly_bench::rapier_pit::RapierPit;
 use rolypoly_physics::{World, WorldConfig};
@@ -36,9 +36,6 @@ use std::time::Instant;
 
 /// Simulated time of every pit run unless an argument such as `10s` says otherwise.
 const SECONDS: f64 = 3.0;
-
-/// Coulomb friction between balls in the headline table.
-const FRICTION: f64 = 0.5;
 
 /// When the share of balls at rest is measured besides the end (s).
 const REST_AT: f64 = 10.0;

@@ -54,6 +54,9 @@ pub trait PitEngine {
     fn read(&self, positions: &mut Vec<DVec3>, velocities: &mut Vec<DVec3>);
 }
 
+/// Coulomb friction between balls in the headline table.
+pub const FRICTION: f64 = 0.5;
+
 /// Layers of balls in the starting lattice; the box is as wide as it must be.
 const LAYERS: usize = 8;
 /// Lattice spacing in ball radii: a small gap between neighbours.

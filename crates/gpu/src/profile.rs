@@ -15,7 +15,7 @@ pub enum Stage {
     Contacts,
     /// The impact rounds.
     Impacts,
-    /// The contact solver's Jacobi sweeps.
+    /// The contact solver's Gauss-Seidel sweeps.
     Solve,
     /// The tumblers' pushes summed.
     Push,
