@@ -4,7 +4,7 @@
 use crate::layout::{Body, Catch, EVENT_CAPACITY, SLOTS};
 
 /// Bindings in the group: the uniform and the storage buffers.
-pub const BINDINGS: u32 = 27;
+pub const BINDINGS: u32 = 28;
 
 /// Each buffer, named by what it holds (see `common.wgsl`).
 pub struct Buffers {
@@ -35,6 +35,7 @@ pub struct Buffers {
     pub own_impact: wgpu::Buffer,
     pub cell_speed: wgpu::Buffer,
     pub near_speed: wgpu::Buffer,
+    pub slot_mirror: wgpu::Buffer,
 }
 
 /// How many of each the buffers hold.
@@ -123,6 +124,7 @@ impl Buffers {
             own_impact: make("wall and body impacts", 32 * n, U::STORAGE),
             cell_speed: make("fastest in each cell", 4 * (sizes.cells + 1), U::STORAGE),
             near_speed: make("fastest near each ball", 4 * n, U::STORAGE),
+            slot_mirror: make("contact mirrors", 4 * SLOTS * n, U::STORAGE),
         }
     }
 
@@ -156,6 +158,7 @@ impl Buffers {
             &self.own_impact,
             &self.cell_speed,
             &self.near_speed,
+            &self.slot_mirror,
         ]
     }
 

@@ -567,7 +567,8 @@ impl GpuBalls {
         }
         pass(encoder, Stage::Contacts, &mut |pass| {
             dispatch(pass, &p.gauge_near_speed, balls);
-            dispatch(pass, &p.find_contacts, balls)
+            dispatch(pass, &p.find_contacts, balls);
+            dispatch(pass, &p.find_mirrors, balls)
         });
         let small = self.params.count <= self.small_world_balls;
         let in_one_group = |pass: &mut wgpu::ComputePass, pipeline: &wgpu::ComputePipeline| {

@@ -120,6 +120,9 @@ struct Event {
 // atomics land in); and of the fastest ball in the 27 cells around each ball.
 @group(0) @binding(25) var<storage, read_write> cell_speed: array<atomic<u32>>;
 @group(0) @binding(26) var<storage, read_write> near_speed: array<f32>;
+// For each contact slot, where its other ball keeps the same contact, or
+// NONE (see `find_mirrors`).
+@group(0) @binding(27) var<storage, read_write> slot_mirror: array<u32>;
 
 // No bounce asked: any goal is larger.
 const NO_GOAL: f32 = -1e30;
@@ -231,18 +234,6 @@ fn set_color(i: u32, palette_index: u32) {
 
 fn slot_count(s: u32) -> u32 {
     return (s >> SLOT_SHIFT) & 15u;
-}
-
-// Where ball `j` keeps its contact with ball `i`, or NONE: a ball whose
-// list is full may leave out one that lists it, and such a one-sided
-// contact is left to the overlap sweeps.
-fn mirror_slot(i: u32, j: u32) -> u32 {
-    for (var k = 0u; k < slot_count(state[j]); k++) {
-        if slot_other[j * SLOTS + k] == i {
-            return j * SLOTS + k;
-        }
-    }
-    return NONE;
 }
 
 fn touches_wall(s: u32, axis: u32) -> bool {

@@ -211,6 +211,29 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     state[i] = s;
 }
 
+// Where each contact's other ball keeps it, found once a step for the
+// warm start and every sweep: a ball whose list is full may leave out one
+// that lists it, and such a one-sided contact is left to the overlap
+// sweeps.
+@compute @workgroup_size(256)
+fn find_mirrors(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = ball_index(id);
+    if i >= params.count {
+        return;
+    }
+    for (var k = 0u; k < slot_count(state[i]); k++) {
+        let j = slot_other[i * SLOTS + k];
+        var mirror = NONE;
+        for (var m = 0u; m < slot_count(state[j]); m++) {
+            if slot_other[j * SLOTS + m] == i {
+                mirror = j * SLOTS + m;
+                break;
+            }
+        }
+        slot_mirror[i * SLOTS + k] = mirror;
+    }
+}
+
 // After the impacts, gravity and each ball's contacts' warm impulses are
 // given to its velocity. A ball reads only its own contacts here.
 @compute @workgroup_size(256)
@@ -228,7 +251,7 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
         fold_body_impact(i);
         for (var k = 0u; k < slot_count(state[i]); k++) {
             let j = slot_other[i * SLOTS + k];
-            if mirror_slot(i, j) == NONE {
+            if slot_mirror[i * SLOTS + k] == NONE {
                 continue;
             }
             let a = min(i, j);

@@ -155,7 +155,7 @@ fn solve_cell_at(c: u32) {
             if j < i {
                 continue;
             }
-            let mirror = mirror_slot(i, j);
+            let mirror = slot_mirror[i * SLOTS + k];
             if mirror != NONE {
                 solve_ball_pair(i, j, i * SLOTS + k, mirror);
             }
