@@ -314,6 +314,23 @@ fn main() {
             std::process::exit(2);
         }
     };
+    // `--cpu-only`: the CPU engine alone (a thread sweep runs it so);
+    // `--friction-only`: the headline table, without the frictionless one.
+    let mut flag = |name: &str| match args.iter().position(|a| a == name) {
+        Some(at) => {
+            args.remove(at);
+            true
+        }
+        None => false,
+    };
+    let cpu_only = flag("--cpu-only");
+    let friction_only = flag("--friction-only");
+    if let Some(unknown) = args.iter().find(|a| a.starts_with("--") && *a != "--bench") {
+        eprintln!(
+            "versus_rapier: unknown option '{unknown}' (known: --csv FILE, --cpu-only, --friction-only)"
+        );
+        std::process::exit(2);
+    }
     let mut rows = String::from("balls,engine,ball_friction,steps_per_second\n");
     let seconds = match args
         .iter()
@@ -350,6 +367,10 @@ fn main() {
         rayon_threads()
     );
     let compute = match rolypoly_gpu::Compute::headless() {
+        _ if cpu_only => {
+            println!("GPU engine and Rapier: not run (--cpu-only)");
+            None
+        }
         Ok(compute) => {
             println!("GPU engine on {}", compute.adapter);
             Some(compute)
@@ -369,7 +390,13 @@ fn main() {
         (FRICTION, format!("friction {FRICTION} between balls")),
         (0.0, "frictionless between balls".to_string()),
     ];
+    let tables = if friction_only {
+        &tables[..1]
+    } else {
+        &tables[..]
+    };
     for (friction, title) in tables {
+        let friction = *friction;
         println!();
         println!("{title}:");
         print_header();
@@ -389,7 +416,7 @@ fn main() {
                     None
                 }
             };
-            let mut rapier = (n <= RAPIER_MOST_BALLS).then(|| RapierPit::new(&pit));
+            let mut rapier = (n <= RAPIER_MOST_BALLS && !cpu_only).then(|| RapierPit::new(&pit));
             let rapier_name = RapierPit::NAME;
             let rest_at = (seconds >= REST_AT || n <= REST_AT_MOST_BALLS).then_some(REST_AT);
             let mut engines: Vec<&mut dyn PitEngine> = vec![&mut ours];

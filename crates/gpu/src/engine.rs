@@ -10,6 +10,7 @@ use crate::passes::{Passes, SweepCounts};
 use crate::profile::{Stage, StageTimer};
 use crate::readback::read_buffer;
 use crate::scan::Scan;
+use crate::wait::WaitBound;
 use glam::{DVec3, Vec3};
 use rolypoly_physics::{Balls, Event, EventKind, Tint, World};
 
@@ -141,7 +142,8 @@ impl PaletteLayout {
 pub struct GpuBalls {
     device: wgpu::Device,
     queue: wgpu::Queue,
-    adapter: String,
+    /// How long any wait on the device may last, and its adapter's name.
+    wait: WaitBound,
     buffers: Buffers,
     bind_group: wgpu::BindGroup,
     passes: Passes,
@@ -308,7 +310,7 @@ impl GpuBalls {
         let mut engine = GpuBalls {
             device,
             queue,
-            adapter,
+            wait: WaitBound::new(adapter),
             buffers,
             bind_group,
             passes,
@@ -335,7 +337,14 @@ impl GpuBalls {
 
     /// The adapter it runs on, "name (backend)".
     pub fn adapter(&self) -> &str {
-        &self.adapter
+        &self.wait.adapter
+    }
+
+    /// Gives up any wait on the GPU after `limit` from now on (30 s unless
+    /// told: [`crate::DEFAULT_GPU_TIMEOUT`]), with an error naming the
+    /// stage waited for.
+    pub fn set_gpu_timeout(&mut self, limit: std::time::Duration) {
+        self.wait.limit = limit;
     }
 
     /// Balls in play or caught, thrown ones included.
@@ -637,7 +646,11 @@ impl GpuBalls {
         let mut sum = [0.0; crate::profile::STAGES];
         for _ in 0..steps {
             self.step_timed(world, Some(&timer))?;
-            for (total, s) in sum.iter_mut().zip(timer.read(&self.device)?) {
+            let step = self.steps;
+            let stamps = timer.read(&self.device, &self.wait, || {
+                format!("the gpu engine's step {step} (its stage timestamps)")
+            })?;
+            for (total, s) in sum.iter_mut().zip(stamps) {
                 *total += s;
             }
         }
@@ -653,10 +666,11 @@ impl GpuBalls {
 
     /// Waits until the GPU has done every step submitted.
     pub fn finish(&self) -> Result<(), GpuError> {
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map(drop)
-            .map_err(|e| GpuError::Readback(e.to_string()))
+        let steps = self.steps;
+        self.wait.wait(&self.device, None, || {
+            format!("the gpu engine's steps (finishing {steps} steps)")
+        })?;
+        Ok(())
     }
 
     /// Writes the instances from the state as it is, without a step.
@@ -676,10 +690,13 @@ impl GpuBalls {
 
     /// Reads the step's report: gives each tumbler its push, keeps the catches.
     fn take_report(&mut self, world: &mut World) -> Result<(), GpuError> {
+        let step = self.steps;
         let bytes = read_buffer(
             &self.device,
+            &self.wait,
             &self.report,
             report_size(self.tumblers) as usize,
+            || format!("the gpu engine's step {step} (its report of tumbler pushes and catches)"),
         )?;
         let push: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes[..32 * self.tumblers]);
         for t in 0..self.tumblers {
@@ -736,7 +753,12 @@ impl GpuBalls {
             let mut encoder = self.device.create_command_encoder(&Default::default());
             encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size.max(16).min(buffer.size()));
             self.queue.submit([encoder.finish()]);
-            read_buffer(&self.device, &staging, size as usize)
+            read_buffer(&self.device, &self.wait, &staging, size as usize, || {
+                format!(
+                    "reading the gpu engine's balls back after step {}",
+                    self.steps
+                )
+            })
         };
         let pos = copy(&self.buffers.pos, 16 * n)?;
         let vel = copy(&self.buffers.vel, 16 * n)?;

@@ -55,6 +55,9 @@ pub enum GpuError {
     /// Reading results back from the GPU failed.
     #[error("reading the balls back from the GPU failed: {0}")]
     Readback(String),
+    /// A wait on the GPU ran out of time or failed.
+    #[error(transparent)]
+    Wait(#[from] crate::wait::WaitError),
     /// The scene's own balls could not be placed.
     #[error("{0}")]
     Build(String),

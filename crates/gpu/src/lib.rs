@@ -42,8 +42,13 @@ mod passes;
 mod profile;
 mod readback;
 mod scan;
+mod wait;
 
 pub use device::{Compute, best_adapter, check_compute, describe, limits};
 pub use engine::{BallState, GpuBalls, THROW_ROOM};
 pub use error::GpuError;
 pub use profile::{STAGES, Stage};
+pub use wait::{
+    DEFAULT_GPU_TIMEOUT, GpuTimeout, WaitBound, WaitError, program_gpu_timeout,
+    set_program_gpu_timeout,
+};

@@ -116,8 +116,13 @@ impl StageTimer {
     }
 
     /// Each stage's seconds in the step just submitted, waiting for it.
-    pub fn read(&self, device: &wgpu::Device) -> Result<[f64; STAGES], GpuError> {
-        let bytes = read_buffer(device, &self.readback, 8 * STAMPS as usize)?;
+    pub fn read(
+        &self,
+        device: &wgpu::Device,
+        bound: &crate::WaitBound,
+        what: impl FnOnce() -> String,
+    ) -> Result<[f64; STAGES], GpuError> {
+        let bytes = read_buffer(device, bound, &self.readback, 8 * STAMPS as usize, what)?;
         let stamps: Vec<u64> = bytemuck::pod_collect_to_vec(&bytes);
         let mut seconds = [0.0; STAGES];
         for (k, s) in seconds.iter_mut().enumerate() {

@@ -180,7 +180,11 @@ mod tests {
         scan.record(&mut encoder);
         encoder.copy_buffer_to_buffer(&buffer, 0, &staging, 0, buffer.size());
         compute.queue.submit([encoder.finish()]);
-        let bytes = read_buffer(device, &staging, 4 * values.len()).unwrap();
+        let bound = crate::WaitBound::new(compute.adapter.clone());
+        let bytes = read_buffer(device, &bound, &staging, 4 * values.len(), || {
+            "the scan".to_string()
+        })
+        .unwrap();
         bytemuck::pod_collect_to_vec(&bytes)
     }
 

@@ -30,6 +30,9 @@ pub enum RenderError {
         #[source]
         source: wgpu::RequestDeviceError,
     },
+    /// A wait on the GPU ran out of time or failed.
+    #[error(transparent)]
+    Wait(#[from] rolypoly_gpu::WaitError),
     #[error("reading the rendered frame back failed: {0}")]
     /// The frame could not be read back.
     Readback(String),
@@ -61,6 +64,8 @@ pub struct Gpu {
     pub queue: wgpu::Queue,
     /// The adapter it was opened on.
     pub adapter: wgpu::Adapter,
+    /// How long any wait on it may last (see [`rolypoly_gpu::WaitBound`]).
+    pub wait: rolypoly_gpu::WaitBound,
 }
 
 impl Gpu {
@@ -115,14 +120,14 @@ impl Gpu {
         Ok(Gpu {
             device,
             queue,
+            wait: rolypoly_gpu::WaitBound::new(format!("{} ({:?})", info.name, info.backend)),
             adapter,
         })
     }
 
     /// "name (backend)", for logs and benchmark reports.
     pub fn describe(&self) -> String {
-        let info = self.adapter.get_info();
-        format!("{} ({:?})", info.name, info.backend)
+        self.wait.adapter.clone()
     }
 
     /// Whether shaders may promise the GPU how they change a fragment's

@@ -33,7 +33,7 @@ pub use mesh::{MeshData, Vertex};
 pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};
 pub use paint::tumbler_paint;
 pub use quality::{AUTO_TARGET_FPS, AutoQuality, Quality, QualityChoice};
-pub use renderer::{FrameStats, PassTimes, RenderSettings, Renderer};
+pub use renderer::{FrameStats, PassTimes, RenderSettings, Renderer, StampSlots};
 pub use snapshot::Snapshot;
 pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
 pub use view::{

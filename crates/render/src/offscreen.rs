@@ -79,8 +79,9 @@ impl OffscreenTarget {
         renderer.render(gpu, view, camera, &self.view, self.width, self.height)
     }
 
-    /// Waits for the GPU and returns the last frame drawn.
-    pub fn read(&self, gpu: &Gpu) -> Result<RgbaImage, RenderError> {
+    /// Waits for the GPU and returns the last frame drawn; `what` names it
+    /// if the wait runs out ("the frame at t = 1.000 s").
+    pub fn read(&self, gpu: &Gpu, what: &str) -> Result<RgbaImage, RenderError> {
         let mut encoder = gpu
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -113,12 +114,13 @@ impl OffscreenTarget {
         slice.map_async(wgpu::MapMode::Read, move |result| {
             let _ = sender.send(result);
         });
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        gpu.wait.wait(&gpu.device, None, || self.named(what))?;
+        // The wait ran the map's callback.
         receiver
-            .recv()
-            .map_err(|e| RenderError::Readback(e.to_string()))?
+            .try_recv()
+            .map_err(|_| {
+                RenderError::Readback("the GPU finished but the frame was not mapped".into())
+            })?
             .map_err(|e| RenderError::Readback(e.to_string()))?;
         let mut pixels = Vec::with_capacity((4 * self.width * self.height) as usize);
         {
@@ -137,11 +139,15 @@ impl OffscreenTarget {
             .ok_or_else(|| RenderError::Readback("frame size does not match its pixels".into()))
     }
 
-    /// Waits until the GPU has finished everything submitted so far.
-    pub fn finish(&self, gpu: &Gpu) -> Result<(), RenderError> {
-        gpu.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| RenderError::Readback(e.to_string()))
+    /// Waits until the GPU has finished everything submitted so far;
+    /// `what` names it if the wait runs out.
+    pub fn finish(&self, gpu: &Gpu, what: &str) -> Result<(), RenderError> {
+        gpu.wait.wait(&gpu.device, None, || self.named(what))?;
+        Ok(())
+    }
+
+    /// `what`, with the frame's size: "the frame at t = 1.000 s (1280x720)".
+    fn named(&self, what: &str) -> String {
+        format!("{what} ({}x{})", self.width, self.height)
     }
 }

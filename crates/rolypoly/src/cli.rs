@@ -1,6 +1,7 @@
 //! The command line (SPEC A1-A3): global scene options and the subcommands.
 
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 use clap::{Args, Parser, Subcommand};
 
@@ -32,6 +33,9 @@ pub struct Cli {
     #[command(flatten)]
     pub window: WindowArgs,
 
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -56,6 +60,29 @@ impl WindowArgs {
             replay_from: None,
         }
     }
+}
+
+/// Help section of the options on the graphics adapter.
+const GPU_HEADING: &str = "GPU options";
+
+/// How the program treats the graphics adapter, on every command and the
+/// window.
+#[derive(Debug, Args)]
+pub struct GpuArgs {
+    /// Longest wait for the GPU, in seconds (decimals allowed, such as
+    /// 0.001; at most 86400): a frame, the GPU engine's step or a read-back
+    /// that takes longer ends the program with an error naming what was
+    /// waited for and the adapter, instead of hanging.
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        default_value = "30",
+        value_parser = parse_gpu_timeout,
+        global = true,
+        allow_negative_numbers = true,
+        help_heading = GPU_HEADING
+    )]
+    pub gpu_timeout: Duration,
 }
 
 /// Help section of the window's options.
@@ -489,21 +516,34 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
     }
 }
 
-/// The length of a clip: more than nothing, at most an hour.
 /// The longest clip, in simulated seconds: an hour.
 pub const MAX_CLIP_SECONDS: f64 = 3600.0;
 
-fn parse_clip_seconds(text: &str) -> Result<f64, String> {
+/// The longest bound on a wait for the GPU: a day.
+pub const MAX_GPU_TIMEOUT_SECONDS: f64 = 86_400.0;
+
+/// A number of seconds more than nothing and at most `most`.
+fn parse_positive_seconds(text: &str, most: f64) -> Result<f64, String> {
     let seconds: f64 = text
         .parse()
         .map_err(|_| format!("`{text}` is not a number of seconds"))?;
-    if seconds.is_finite() && seconds > 0.0 && seconds <= MAX_CLIP_SECONDS {
+    if seconds.is_finite() && seconds > 0.0 && seconds <= most {
         Ok(seconds)
     } else {
         Err(format!(
-            "{text} is out of range: allowed more than 0, at most 3600"
+            "{text} is out of range: allowed more than 0, at most {most}"
         ))
     }
+}
+
+/// The length of a clip: more than nothing, at most an hour.
+fn parse_clip_seconds(text: &str) -> Result<f64, String> {
+    parse_positive_seconds(text, MAX_CLIP_SECONDS)
+}
+
+/// The bound on every wait for the GPU: more than nothing, at most a day.
+fn parse_gpu_timeout(text: &str) -> Result<Duration, String> {
+    parse_positive_seconds(text, MAX_GPU_TIMEOUT_SECONDS).map(Duration::from_secs_f64)
 }
 
 /// The number of steps that covers `seconds` at time step `dt`.

@@ -85,9 +85,10 @@ impl Frames {
         light: &LightConfig,
         camera: &Camera,
     ) -> anyhow::Result<image::RgbaImage> {
+        let what = format!("the frame at t = {:.3} s", sim.world.time());
         Ok(self
             .snapshot
-            .capture(&sim.view_showing(light, &self.debug), camera)?)
+            .capture_named(&sim.view_showing(light, &self.debug), camera, &what)?)
     }
 
     /// The device the frames are drawn with.

@@ -32,6 +32,7 @@ use std::time::{Duration, Instant};
 use targets::{TargetKit, Targets};
 use timing::GpuTimer;
 pub use timing::PassTimes;
+pub use timing::StampSlots;
 use wgpu::util::DeviceExt;
 
 mod bindings;
@@ -113,8 +114,12 @@ pub struct FrameStats {
     /// Time spent in our own code building and recording the frame.
     pub cpu_time: Duration,
     /// The GPU's time for each pass of the latest frame whose timestamps
-    /// have come back, where the adapter has timestamp queries.
+    /// have come back, where the adapter has timestamp queries and the
+    /// passes are timed (see [`Renderer::set_gpu_timing`]).
     pub gpu: Option<PassTimes>,
+    /// The timestamp slots this frame wrote and resolved: none unless its
+    /// passes are timed.
+    pub stamps: StampSlots,
 }
 
 /// The scene shader's `Globals`: the camera, both lights, the shadows and
@@ -181,8 +186,10 @@ pub struct Renderer {
     /// The tumbler mesh's bounding sphere, in its own space.
     tumbler_bounds: (glam::Vec3, f32),
     targets: Option<Targets>,
-    /// Times the passes on the GPU, where it can.
+    /// Times the passes on the GPU, where it can, once timing is asked for.
     timer: Option<GpuTimer>,
+    /// Whether the passes are timed (the profiler is open).
+    timing: bool,
 }
 
 /// The debug views' vertices: filled and uploaded as instances are.
@@ -272,8 +279,19 @@ impl Renderer {
             faces_reached: Vec::new(),
             tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
-            timer: GpuTimer::new(device, &gpu.queue),
+            timer: None,
+            timing: false,
         }
+    }
+
+    /// Times each frame's passes on the GPU from now on (where the adapter
+    /// has timestamp queries), or stops. Off unless asked: a frame nobody
+    /// profiles writes no timestamps.
+    pub fn set_gpu_timing(&mut self, gpu: &Gpu, on: bool) {
+        if on && self.timer.is_none() {
+            self.timer = GpuTimer::new(&gpu.device, &gpu.queue);
+        }
+        self.timing = on;
     }
 
     /// Draws the white arrow cursor with its tip at `pixel` (from the
@@ -311,7 +329,7 @@ impl Renderer {
         }
         let start = Instant::now();
         let gpu_times = self.timer.as_mut().and_then(|t| t.collect(&gpu.device));
-        let timed = self.timer.as_ref().is_some_and(GpuTimer::free);
+        let timed = self.timing && self.timer.as_ref().is_some_and(GpuTimer::free);
         self.ensure_targets(gpu, width, height);
         let ranges = instances::fill_scene(&mut self.instances.items, view);
         self.instances.upload(gpu);
@@ -388,8 +406,9 @@ impl Renderer {
         gpu.queue
             .write_buffer(&self.tonemap_params, 0, bytemuck::cast_slice(&params));
         draw_calls += self.tonemap_pass(&gpu.queue, &mut encoder, targets, output, timed);
+        let mut stamps = StampSlots::default();
         if timed && let Some(timer) = &mut self.timer {
-            timer.resolve(&mut encoder, self.settings.shadows);
+            stamps = timer.resolve(&mut encoder);
         }
         let cpu_time = start.elapsed();
         gpu.queue.submit([encoder.finish()]);
@@ -400,6 +419,7 @@ impl Renderer {
             draw_calls,
             cpu_time,
             gpu: gpu_times,
+            stamps,
         })
     }
 

@@ -23,6 +23,7 @@ mod simulate;
 /// Runs the program for parsed arguments.
 pub fn run(cli: &Cli) -> anyhow::Result<()> {
     check_outputs(cli)?;
+    rolypoly_gpu::set_program_gpu_timeout(cli.gpu.gpu_timeout);
     if let Some(Command::Replay(args)) = &cli.command {
         // A recording carries its own scene and seed.
         return replay::replay(args, &cli.window, cli.scene.engine);

@@ -206,7 +206,7 @@ impl Hud {
         size: [u32; 2],
         s: &HudState,
         mut panel: impl FnMut(&mut egui::Ui),
-    ) {
+    ) -> wgpu::SubmissionIndex {
         let raw = self.input.take_egui_input(window);
         let mut output = self.context.run_ui(raw, |ui| {
             panel(ui);
@@ -332,11 +332,13 @@ impl Hud {
             let mut pass = pass.forget_lifetime();
             self.renderer.render(&mut pass, &jobs, &screen);
         }
-        gpu.queue
+        let submitted = gpu
+            .queue
             .submit(extra.into_iter().chain([encoder.finish()]));
         for id in output.textures_delta.free.drain() {
             self.renderer.free_texture(&id);
         }
+        submitted
     }
 }
 

@@ -96,7 +96,18 @@ struct Running {
     config: wgpu::SurfaceConfiguration,
     renderer: Renderer,
     hud: Hud,
+    /// The frames submitted and not yet waited for, oldest first, with
+    /// their numbers: at most [`FRAMES_IN_FLIGHT`].
+    in_flight: std::collections::VecDeque<(u64, wgpu::SubmissionIndex)>,
+    /// Frames submitted since the window opened.
+    frames_submitted: u64,
 }
+
+/// Frames the GPU may have queued before the next waits, within the
+/// program's bound, for the oldest: so that a GPU that stalls ends the
+/// window with an error naming the frame instead of a window that never
+/// draws.
+const FRAMES_IN_FLIGHT: usize = 2;
 
 /// What the orbit camera circles.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -300,8 +311,18 @@ impl App {
                 return;
             }
         };
+        if r.in_flight.len() >= FRAMES_IN_FLIGHT
+            && let Some((number, oldest)) = r.in_flight.pop_front()
+            && let Err(e) = r.gpu.wait.wait(&r.gpu.device, Some(oldest), || {
+                format!("the window's frame {number}")
+            })
+        {
+            self.fail(event_loop, e.into());
+            return;
+        }
         let target = texture.texture.create_view(&Default::default());
         r.renderer.set_cursor(cursor);
+        r.renderer.set_gpu_timing(&r.gpu, self.profiler.open);
         let (w, h) = (r.config.width, r.config.height);
         let stats = match r.renderer.render(&r.gpu, &view, &camera, &target, w, h) {
             Ok(stats) => stats,
@@ -315,11 +336,14 @@ impl App {
         let (panel, sandbox, profiler) = (&mut self.panel, &mut self.sandbox, &self.profiler);
         let mut action = None;
         let hud_started = Instant::now();
-        r.hud
+        let submitted = r
+            .hud
             .draw(&r.window, &r.gpu, &target, [w, h], &self.hud_state, |ui| {
                 action = panel.show(ui, sandbox);
                 profiler.show(ui.ctx());
             });
+        r.frames_submitted += 1;
+        r.in_flight.push_back((r.frames_submitted, submitted));
         self.profiler.push(FrameProfile {
             at: (now - self.opened).as_secs_f64(),
             frame: Duration::from_secs_f64(elapsed),
@@ -476,7 +500,7 @@ impl App {
         let target = OffscreenTarget::new(&r.gpu, w, h)?;
         let view = self.sandbox.sim.view(&self.sandbox.scene().light);
         target.render(&r.gpu, &mut renderer, &view, &self.camera.camera())?;
-        let image = target.read(&r.gpu)?;
+        let image = target.read(&r.gpu, "the screenshot")?;
         self.screenshots += 1;
         let stamp = seconds_since_1970();
         let path = self

@@ -114,6 +114,8 @@ impl App {
             config,
             renderer,
             hud,
+            in_flight: Default::default(),
+            frames_submitted: 0,
         })
     }
 }
