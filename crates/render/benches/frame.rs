@@ -188,11 +188,11 @@ fn main() {
         print_row("  every debug view", &frame);
         println!(
             "{:<36} {:>8} {:>10.2} {:>14.3} {:>11}",
-            "  views over none, build ms, lines",
+            "  views over none, build ms, marks",
             "",
             frame.per_second / without.per_second,
             build_ms,
-            (shown.debug_lines.len() + shown.debug_lines_over.len()) / 2
+            shown.debug_marks.len()
         );
     }
     if million {

@@ -504,33 +504,3 @@ fn fs_ball_shadow(in: BallOut) -> @builtin(frag_depth) f32 {
     }
     return ball_depth(shadow_face_uniform.view_proj, hit.point, in.clip.z);
 }
-
-// --- debug views: lines ---------------------------------------------------------
-//
-// Unlit line segments over the scene, tested against its depth but not
-// written to it; drawn a hair towards the eye so that a dot on a surface
-// is not lost in it.
-
-struct LineIn {
-    @location(0) position: vec3<f32>,
-    @location(1) color: vec3<f32>,
-};
-
-struct LineOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) color: vec3<f32>,
-};
-
-@vertex
-fn vs_line(v: LineIn) -> LineOut {
-    var out: LineOut;
-    out.clip = globals.view_proj * vec4<f32>(v.position, 1.0);
-    out.clip.z -= 2e-5 * out.clip.w;
-    out.color = v.color;
-    return out;
-}
-
-@fragment
-fn fs_line(in: LineOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(in.color, 1.0);
-}

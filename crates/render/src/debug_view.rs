@@ -1,10 +1,15 @@
-//! The debug views: what happens inside the step, drawn as lines in the
-//! scene (depth-tested, over what is lit): the contacts and their impulses,
-//! the bodies' velocities and spins, the broadphase's occupied cells, which
-//! bodies are at rest, and why a tumbler rights itself.
+//! The debug views: what happens inside the step, drawn as marks over the
+//! finished frame: the contacts and their impulses, the bodies' velocities
+//! and spins, the broadphase's occupied cells, which bodies are at rest,
+//! and why a tumbler rights itself.
 //!
 //! Built each frame on the processor from the world and the last step's
-//! events, as plain line segments; the renderer draws them all in one call.
+//! events, as plain marks (lines, dots, arrowheads) between points of the
+//! world; the renderer draws them all in one call, at the output's
+//! resolution, each a screen-facing quad sized in pixels with a dark
+//! outline, so that it reads on the white wall, the wood floor and a
+//! coloured ball alike and at any distance (as Box2D's, Jolt's and MuJoCo's
+//! debug draws do). Marks hidden behind a body are drawn faintly, not lost.
 
 use std::collections::HashMap;
 use std::fmt;
@@ -62,16 +67,51 @@ impl DebugLayer {
     }
 }
 
-/// Gravity (m/s²) of the impulse that draws a ball's radius long: a ball's
-/// weight over a step on Earth, whatever the scene's gravity.
+/// Gravity (m/s²) of the reference impulse: a ball's weight over a step on
+/// Earth, whatever the scene's gravity.
 const STANDARD_GRAVITY: f64 = 9.81;
+/// An impulse's line, in ball radii, at the reference impulse (a ball's
+/// weight over a step); each tenfold more adds [`RADII_PER_DECADE`], so
+/// that a tumbler's weight and a hard impact fit the scene as well as a
+/// ball resting on the floor. An impulse too small to reach a length is
+/// not drawn.
+const REFERENCE_RADII: f64 = 2.5;
+/// Ball radii an impulse's line grows by for each tenfold of impulse.
+const RADII_PER_DECADE: f64 = 1.0;
 /// Seconds of travel a velocity arrow shows.
 const VELOCITY_SECONDS: f32 = 0.25;
-/// Half the width of a contact's dot (m); an impact's is twice as wide.
-const DOT: f32 = 0.04;
-/// Lines are drawn this much brighter than their colour: above the bloom's
-/// threshold, so that one pixel wide they still show from across the room.
-const GLOW: f32 = 2.5;
+
+/// The marks' sizes, in pixels of a frame 360 pixels high: a taller frame
+/// draws them larger in proportion (see [`mark_scale`]), so that they look
+/// alike at any resolution and quality level.
+pub mod mark_size {
+    /// A contact's dot, across.
+    pub const DOT: f32 = 10.0;
+    /// An impact's dot, across.
+    pub const IMPACT_DOT: f32 = 14.0;
+    /// A contact's normal, drawn from its dot.
+    pub const NORMAL: f32 = 36.0;
+    /// Where an impulse acts, across.
+    pub const IMPULSE_DOT: f32 = 10.0;
+    /// A spike's width (see debug_marks.wgsl's `SPIKE_WIDTH`).
+    pub const SPIKE: f32 = 2.5;
+    /// A centre of mass's dot, across.
+    pub const COM_DOT: f32 = 14.0;
+    /// A line's width.
+    pub const LINE: f32 = 2.0;
+    /// A vector's width (impulses, velocities).
+    pub const VECTOR: f32 = 3.0;
+    /// An arrowhead's length.
+    pub const HEAD: f32 = 14.0;
+    /// The dark outline around every mark.
+    pub const OUTLINE: f32 = 1.0;
+}
+
+/// Pixels of the output per pixel of [`mark_size`]: its height over 360, and
+/// never below one.
+pub fn mark_scale(output_height: u32) -> f32 {
+    (output_height as f32 / 360.0).max(1.0)
+}
 /// Below this speed (m/s), and turning its surface slower, a body is at rest.
 pub const REST_SPEED: f32 = 0.05;
 /// The speed (m/s) the rest view's colours run up to.
@@ -152,29 +192,86 @@ impl fmt::Display for DebugViews {
     }
 }
 
-/// One end of a line segment of a debug view (see `LineIn` in scene.wgsl).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct LineVertex {
-    /// Where it is (m).
-    pub position: [f32; 3],
-    /// Its colour (linear RGB).
-    pub color: [f32; 3],
+/// What a debug mark is drawn as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MarkShape {
+    /// A line from `from` to `to`, round-ended.
+    Line,
+    /// A dot at `from`.
+    Dot,
+    /// An arrowhead with its tip at `to`, pointing away from `from`.
+    Head,
+    /// A line of a fixed length on screen (its size) from `from`, towards
+    /// where `to` shows: a direction, such as a contact's normal.
+    Spike,
 }
 
-impl LineVertex {
-    const ATTRIBUTES: [wgpu::VertexAttribute; 2] =
-        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+/// One mark of a debug view (see `MarkIn` in debug_marks.wgsl): between two
+/// points of the world, sized in pixels (see [`mark_size`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct DebugMark {
+    /// Where it starts (m).
+    pub from: [f32; 3],
+    /// Its [`MarkShape`], as 0, 1, 2 or 3.
+    pub shape: f32,
+    /// Where it ends (m); a dot's is its `from`.
+    pub to: [f32; 3],
+    /// A line's width, a dot's diameter, a head's or a spike's length
+    /// (pixels of a 360-pixel frame).
+    pub size: f32,
+    /// Its colour (linear RGB), and 1 in alpha to be drawn over everything,
+    /// 0 to be drawn faint where a body hides it.
+    pub color: [f32; 4],
+}
 
-    /// The vertex buffer's layout.
+impl DebugMark {
+    const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
+        wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4];
+
+    /// The instance buffer's layout.
     pub fn layout() -> wgpu::VertexBufferLayout<'static> {
         wgpu::VertexBufferLayout {
-            array_stride: std::mem::size_of::<LineVertex>() as u64,
-            step_mode: wgpu::VertexStepMode::Vertex,
+            array_stride: std::mem::size_of::<DebugMark>() as u64,
+            step_mode: wgpu::VertexStepMode::Instance,
             attributes: &Self::ATTRIBUTES,
         }
     }
+
+    /// What it is drawn as.
+    pub fn shape(&self) -> MarkShape {
+        match self.shape as u32 {
+            0 => MarkShape::Line,
+            1 => MarkShape::Dot,
+            2 => MarkShape::Head,
+            _ => MarkShape::Spike,
+        }
+    }
+
+    /// Whether it is drawn over everything.
+    pub fn over(&self) -> bool {
+        self.color[3] > 0.5
+    }
 }
+
+/// An impulse along a contact's normal.
+const IMPULSE_COLOR: Vec3 = Vec3::new(1.0, 1.0, 0.3);
+/// Friction's impulse, along the contact.
+const FRICTION_COLOR: Vec3 = Vec3::new(1.0, 0.35, 0.1);
+/// A body's velocity.
+const VELOCITY_COLOR: Vec3 = Vec3::new(1.0, 0.45, 0.1);
+/// A body's spin, along its axis.
+const SPIN_COLOR: Vec3 = Vec3::new(0.3, 0.6, 1.0);
+/// An occupied cell's edges.
+const GRID_COLOR: Vec3 = Vec3::new(0.25, 0.85, 0.4);
+/// A tumbler's centre of mass.
+const COM_COLOR: Vec3 = Vec3::ONE;
+/// From the centre of mass to the rolling contact.
+const LEVER_COLOR: Vec3 = Vec3::new(1.0, 0.9, 0.2);
+/// The weight's line, straight down from the centre of mass.
+const WEIGHT_COLOR: Vec3 = Vec3::splat(0.8);
+/// The righting arm: from under the centre of mass to the contact.
+const ARM_COLOR: Vec3 = Vec3::new(1.0, 0.3, 0.2);
 
 /// Colours of a contact's kind.
 fn kind_color(kind: ContactKind) -> Vec3 {
@@ -201,51 +298,48 @@ enum State {
 impl State {
     fn tint(self, color: Vec3) -> Vec3 {
         match self {
-            State::New => color * 1.4,
-            State::Kept => color * 0.55,
-            State::Impact => color.lerp(Vec3::ONE, 0.5) * 1.6,
+            State::New => color,
+            State::Kept => color * 0.6,
+            State::Impact => color.lerp(Vec3::ONE, 0.5),
         }
     }
 }
 
-/// Line segments, two vertices each.
+/// The marks being built, and whether new ones are drawn over everything.
 #[derive(Default)]
-struct Lines(Vec<LineVertex>);
+struct Marks {
+    marks: Vec<DebugMark>,
+    over: bool,
+}
 
-impl Lines {
+impl Marks {
+    fn push(&mut self, shape: MarkShape, from: Vec3, to: Vec3, size: f32, color: Vec3) {
+        let color = color.min(Vec3::ONE);
+        self.marks.push(DebugMark {
+            from: from.to_array(),
+            shape: shape as u32 as f32,
+            to: to.to_array(),
+            size,
+            color: [color.x, color.y, color.z, if self.over { 1.0 } else { 0.0 }],
+        });
+    }
+
     fn segment(&mut self, a: Vec3, b: Vec3, color: Vec3) {
-        let color = (color * GLOW).to_array();
-        self.0.push(LineVertex {
-            position: a.to_array(),
-            color,
-        });
-        self.0.push(LineVertex {
-            position: b.to_array(),
-            color,
-        });
+        self.push(MarkShape::Line, a, b, mark_size::LINE, color);
     }
 
-    /// A dot: three short crossing lines.
-    fn dot(&mut self, at: Vec3, half: f32, color: Vec3) {
-        for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
-            self.segment(at - axis * half, at + axis * half, color);
-        }
+    fn dot(&mut self, at: Vec3, across: f32, color: Vec3) {
+        self.push(MarkShape::Dot, at, at, across, color);
     }
 
-    /// An arrow from `from` along `along`, with a head.
+    /// An arrow from `from` along `along`, its head sized in pixels.
     fn arrow(&mut self, from: Vec3, along: Vec3, color: Vec3) {
-        let length = along.length();
-        if length < 1e-4 {
+        if along.length() < 1e-4 {
             return;
         }
         let to = from + along;
-        self.segment(from, to, color);
-        let dir = along / length;
-        let side = dir.any_orthonormal_vector();
-        let head = (0.25 * length).min(0.06);
-        for s in [side, -side] {
-            self.segment(to, to - dir * head + s * head * 0.5, color);
-        }
+        self.push(MarkShape::Line, from, to, mark_size::VECTOR, color);
+        self.push(MarkShape::Head, from, to, mark_size::HEAD, color);
     }
 
     /// The twelve edges of the box `lo..lo + size`.
@@ -255,6 +349,120 @@ impl Lines {
             self.segment(c(0.0, a, b), c(1.0, a, b), color);
             self.segment(c(a, 0.0, b), c(a, 1.0, b), color);
             self.segment(c(a, b, 0.0), c(a, b, 1.0), color);
+        }
+    }
+}
+
+/// How long an impulse's line is (m): [`REFERENCE_RADII`] ball radii at
+/// `reference` (a ball's weight over a step), one radius more for each
+/// tenfold (times the panel's `scale`), none where that is no length.
+fn impulse_length(impulse: f64, reference: f64, radius: f64, scale: f32) -> f64 {
+    if impulse <= 0.0 || reference <= 0.0 {
+        return 0.0;
+    }
+    let radii = REFERENCE_RADII + RADII_PER_DECADE * (impulse / reference).log10();
+    radii.max(0.0) * radius * f64::from(scale)
+}
+
+/// One line of the debug views' legend: a mark, its colour, what it means.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LegendEntry {
+    /// How it is drawn.
+    pub shape: MarkShape,
+    /// Its colour (linear RGB).
+    pub color: [f32; 3],
+    /// What it means.
+    pub text: String,
+}
+
+impl DebugLayer {
+    /// What this view draws, mark by mark: the legend's lines for it.
+    pub fn legend(self) -> Vec<LegendEntry> {
+        let entry = |shape, color: Vec3, text: &str| LegendEntry {
+            shape,
+            color: color.min(Vec3::ONE).to_array(),
+            text: text.to_string(),
+        };
+        let dot = MarkShape::Dot;
+        match self {
+            DebugLayer::Contacts => vec![
+                entry(
+                    MarkShape::Spike,
+                    Vec3::ONE,
+                    "a contact and the normal it pushes along",
+                ),
+                entry(
+                    dot,
+                    kind_color(ContactKind::BallBall),
+                    "ball - ball contact",
+                ),
+                entry(
+                    dot,
+                    kind_color(ContactKind::BallWall),
+                    "ball - wall or floor",
+                ),
+                entry(dot, kind_color(ContactKind::BallTumbler), "ball - tumbler"),
+                entry(
+                    dot,
+                    kind_color(ContactKind::TumblerFloor),
+                    "tumbler - floor",
+                ),
+                entry(
+                    dot,
+                    kind_color(ContactKind::TumblerTumbler),
+                    "tumbler - tumbler",
+                ),
+                entry(
+                    dot,
+                    State::Kept.tint(Vec3::ONE),
+                    "darker: kept from the last step; large and pale: an impact",
+                ),
+            ],
+            DebugLayer::Impulses => vec![
+                entry(MarkShape::Head, IMPULSE_COLOR, "impulse along the normal"),
+                entry(MarkShape::Head, FRICTION_COLOR, "friction's impulse"),
+                entry(
+                    MarkShape::Line,
+                    Vec3::splat(0.8),
+                    &format!(
+                        "log length: {REFERENCE_RADII} ball radii at a ball's weight over a step, \
+                         {RADII_PER_DECADE} more for each tenfold (times the panel's scale)"
+                    ),
+                ),
+            ],
+            DebugLayer::Velocities => vec![
+                entry(
+                    MarkShape::Head,
+                    VELOCITY_COLOR,
+                    &format!("velocity: where it goes in {VELOCITY_SECONDS} s"),
+                ),
+                entry(MarkShape::Head, SPIN_COLOR, "spin, along its axis"),
+            ],
+            DebugLayer::Grid => vec![entry(
+                MarkShape::Line,
+                GRID_COLOR,
+                "cells of the broadphase that hold a ball",
+            )],
+            DebugLayer::Rest => vec![
+                entry(dot, speed_color(0.0), "at rest"),
+                entry(dot, speed_color(0.5), "slow"),
+                entry(dot, speed_color(2.0), "faster"),
+                entry(dot, speed_color(FAST), &format!("{FAST} m/s and over")),
+            ],
+            DebugLayer::Com => vec![
+                entry(dot, COM_COLOR, "centre of mass"),
+                entry(MarkShape::Head, WEIGHT_COLOR, "its weight, straight down"),
+                entry(
+                    dot,
+                    kind_color(ContactKind::TumblerFloor),
+                    "rolling contact",
+                ),
+                entry(
+                    MarkShape::Line,
+                    ARM_COLOR,
+                    "righting arm: the weight's lever",
+                ),
+            ],
         }
     }
 }
@@ -370,38 +578,49 @@ impl SceneView {
         if !views.any() {
             return self;
         }
-        let mut lines = Lines(std::mem::take(&mut self.debug_lines));
+        let mut lines = Marks {
+            marks: std::mem::take(&mut self.debug_marks),
+            over: false,
+        };
         if views.shows(DebugLayer::Contacts) || views.shows(DebugLayer::Impulses) {
-            // Metres of line per newton-second.
             let balls = &world.config().balls;
-            let weight = balls.mass * STANDARD_GRAVITY * world.config().solver.dt;
-            let scale = f64::from(views.impulse_scale) * balls.radius / weight;
+            let reference = balls.mass * STANDARD_GRAVITY * world.config().solver.dt;
+            let length = |impulse: f64| {
+                impulse_length(impulse, reference, balls.radius, views.impulse_scale)
+            };
             for s in contacts(world, events) {
                 let p = &s.probe;
                 let point = p.point.as_vec3();
-                if views.shows(DebugLayer::Contacts) {
-                    let half = if s.state == State::Impact {
-                        2.0 * DOT
-                    } else {
-                        DOT
-                    };
-                    lines.dot(point, half, s.state.tint(kind_color(p.kind)));
-                }
                 if views.shows(DebugLayer::Impulses) {
-                    let normal = (p.normal * p.impulse * scale).as_vec3();
-                    lines.segment(point, point + normal, Vec3::new(1.0, 1.0, 0.3));
-                    let friction = (p.friction * scale).as_vec3();
-                    if friction.length() > 1e-4 {
-                        lines.segment(point, point + friction, Vec3::new(1.0, 0.35, 0.1));
+                    let normal = (p.normal * length(p.impulse)).as_vec3();
+                    if normal != Vec3::ZERO {
+                        lines.dot(point, mark_size::IMPULSE_DOT, IMPULSE_COLOR);
                     }
+                    lines.arrow(point, normal, IMPULSE_COLOR);
+                    let friction = p.friction.length();
+                    if friction > 0.0 {
+                        let along = (p.friction / friction * length(friction)).as_vec3();
+                        lines.arrow(point, along, FRICTION_COLOR);
+                    }
+                }
+                if views.shows(DebugLayer::Contacts) {
+                    let across = if s.state == State::Impact {
+                        mark_size::IMPACT_DOT
+                    } else {
+                        mark_size::DOT
+                    };
+                    let color = s.state.tint(kind_color(p.kind));
+                    // The normal the contact pushes along, as Box2D draws it.
+                    let towards = point + p.normal.as_vec3() * 0.1;
+                    lines.push(MarkShape::Spike, point, towards, mark_size::NORMAL, color);
+                    lines.dot(point, across, color);
                 }
             }
         }
         let balls = world.balls();
         let live = || (0..balls.len()).filter(|&i| balls.alive()[i]);
         if views.shows(DebugLayer::Velocities) {
-            let (velocity_color, spin_color) =
-                (Vec3::new(1.0, 0.45, 0.1), Vec3::new(0.3, 0.6, 1.0));
+            let (velocity_color, spin_color) = (VELOCITY_COLOR, SPIN_COLOR);
             for i in live() {
                 let centre = balls.positions()[i].as_vec3();
                 let r = balls.radii()[i] as f32;
@@ -434,30 +653,42 @@ impl SceneView {
         if views.shows(DebugLayer::Grid) {
             let (cells, edge) = world.occupied_cells();
             for c in cells {
-                lines.cube(c.as_vec3(), edge as f32, Vec3::new(0.25, 0.7, 0.35));
+                lines.cube(c.as_vec3(), edge as f32, GRID_COLOR);
             }
         }
         // The centre of mass lies inside the tumbler: drawn over it.
-        let mut over = Lines(std::mem::take(&mut self.debug_lines_over));
         if views.shows(DebugLayer::Com) {
-            let lines = &mut over;
+            lines.over = true;
             for t in world.tumblers() {
                 let com = t.center_of_mass().as_vec3();
                 let contact = t.contact_point().as_vec3();
                 let below = Vec3::new(com.x, contact.y, com.z);
-                lines.dot(com, 2.0 * DOT, Vec3::ONE * 1.5);
-                lines.dot(
-                    contact,
-                    2.0 * DOT,
-                    kind_color(ContactKind::TumblerFloor) * 1.4,
-                );
                 // The lever: the weight acts straight down from the centre of
                 // mass; its horizontal distance from the contact turns the
                 // tumbler back upright.
-                lines.segment(com, contact, Vec3::new(1.0, 0.9, 0.2) * 1.4);
-                lines.segment(com, below, Vec3::splat(0.8));
-                lines.segment(below, contact, Vec3::new(1.0, 0.3, 0.2) * 1.4);
+                lines.push(
+                    MarkShape::Line,
+                    com,
+                    contact,
+                    mark_size::VECTOR,
+                    LEVER_COLOR,
+                );
+                lines.arrow(com, below - com, WEIGHT_COLOR);
+                lines.push(
+                    MarkShape::Line,
+                    below,
+                    contact,
+                    mark_size::VECTOR,
+                    ARM_COLOR,
+                );
+                lines.dot(com, mark_size::COM_DOT, COM_COLOR);
+                lines.dot(
+                    contact,
+                    mark_size::COM_DOT,
+                    kind_color(ContactKind::TumblerFloor),
+                );
             }
+            lines.over = false;
         }
         if views.shows(DebugLayer::Rest) {
             for (view, i) in self.balls.iter_mut().zip(live()) {
@@ -472,8 +703,7 @@ impl SceneView {
                 view.color = speed_color(t.linear_velocity().length().max(rocking) as f32);
             }
         }
-        self.debug_lines = lines.0;
-        self.debug_lines_over = over.0;
+        self.debug_marks = lines.marks;
         self
     }
 }

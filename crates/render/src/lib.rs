@@ -27,7 +27,10 @@ mod tumbler_mesh;
 mod view;
 
 pub use camera::Camera;
-pub use debug_view::{DebugLayer, DebugViews, LineVertex, REST_SPEED, speed_color};
+pub use debug_view::{
+    DebugLayer, DebugMark, DebugViews, LegendEntry, MarkShape, REST_SPEED, mark_scale, mark_size,
+    speed_color,
+};
 pub use gpu::{Gpu, HDR_FORMAT, RenderError};
 pub use mesh::{MeshData, Vertex};
 pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};

@@ -99,8 +99,7 @@ mod tests {
             particles: Vec::new(),
             fireball: None,
             fireball_light: None,
-            debug_lines: Vec::new(),
-            debug_lines_over: Vec::new(),
+            debug_marks: Vec::new(),
             gpu_balls: None,
         }
     }

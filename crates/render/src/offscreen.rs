@@ -68,6 +68,11 @@ impl OffscreenTarget {
         })
     }
 
+    /// The texture frames are drawn into, for what is drawn over them.
+    pub fn view(&self) -> &wgpu::TextureView {
+        &self.view
+    }
+
     /// Draws one frame into the target.
     pub fn render(
         &self,

@@ -78,19 +78,8 @@ impl Snapshot {
 
     /// Draws a frame and reads it back.
     pub fn capture(&mut self, view: &SceneView, camera: &Camera) -> Result<RgbaImage, RenderError> {
-        self.capture_named(view, camera, "an off-screen frame")
-    }
-
-    /// Draws a frame and reads it back; `what` names the frame if the
-    /// wait for it runs out ("the frame at t = 1.000 s").
-    pub fn capture_named(
-        &mut self,
-        view: &SceneView,
-        camera: &Camera,
-        what: &str,
-    ) -> Result<RgbaImage, RenderError> {
         self.target
             .render(&self.gpu, &mut self.renderer, view, camera)?;
-        self.target.read(&self.gpu, what)
+        self.target.read(&self.gpu, "an off-screen frame")
     }
 }

@@ -7,7 +7,7 @@ use rolypoly_fx::{Effects, FireballLook, ParticleKind};
 use rolypoly_fx::{Flash, SHELL_COLORS};
 use rolypoly_physics::World;
 
-use crate::debug_view::LineVertex;
+use crate::debug_view::DebugMark;
 
 /// The point light's constants (a scene file's `[light]`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -267,11 +267,8 @@ pub struct SceneView {
     pub fireball: Option<FireballLook>,
     /// The fireball's light (drawn where `light.fireball_light` says so).
     pub fireball_light: Option<PointLight>,
-    /// The debug views' line segments, two vertices each (see
-    /// [`SceneView::with_debug`]).
-    pub debug_lines: Vec<LineVertex>,
-    /// As `debug_lines`, drawn over everything (what lies inside a body).
-    pub debug_lines_over: Vec<LineVertex>,
+    /// The debug views' marks (see [`SceneView::with_debug`]).
+    pub debug_marks: Vec<DebugMark>,
     /// The balls on the GPU, drawn from there instead of `balls` (which is
     /// then empty), where the GPU engine steps them.
     pub gpu_balls: Option<GpuBallBuffer>,
@@ -317,8 +314,7 @@ impl SceneView {
             particles: Vec::new(),
             fireball_light: PointLight::of_fireball(fireball.as_ref(), None),
             fireball,
-            debug_lines: Vec::new(),
-            debug_lines_over: Vec::new(),
+            debug_marks: Vec::new(),
             gpu_balls: None,
         }
     }

@@ -1,6 +1,7 @@
 //! The debug views checked by pictures: each changes the frame, and only
-//! where it should: the line views within a few pixels of their own
-//! segments, the rest view within the bodies it recolours.
+//! where it should: the marks within their own sizes (and outlines) of
+//! where they are drawn, the rest view within the bodies it recolours;
+//! and each is seen from the default camera at any size and quality.
 //!
 //! These draw off-screen on whatever adapter exists (lavapipe in CI).
 
@@ -8,13 +9,11 @@ use glam::{DVec3, Vec2, Vec3};
 use image::RgbaImage;
 use rolypoly_physics::{BallPlacement, Event, World, WorldConfig};
 use rolypoly_render::{
-    Camera, DebugLayer, DebugViews, LineVertex, RenderSettings, SceneView, Snapshot, speed_color,
+    Camera, DebugLayer, DebugMark, DebugViews, MarkShape, Quality, RenderSettings, SceneView,
+    Snapshot, mark_scale, mark_size, speed_color,
 };
 
 const SIZE: (u32, u32) = (480, 270);
-/// How far (pixels) a line's pixels may lie from its segment: its own
-/// width and the multisampled edge.
-const NEAR_LINE: f32 = 2.5;
 
 fn camera() -> Camera {
     Camera {
@@ -79,21 +78,44 @@ fn differing(a: &RgbaImage, b: &RgbaImage) -> Vec<Vec2> {
         .collect()
 }
 
-/// The lines as drawn: each segment cut into short pieces, those wholly in
-/// front of the eye projected (the GPU clips what crosses the near plane).
-fn segments(lines: &[LineVertex]) -> Vec<(Vec2, Vec2)> {
+/// Each mark as drawn: a segment on screen (cut into short pieces, those
+/// wholly in front of the eye projected) and how far from it its pixels
+/// may lie: half its size, its outline and a pixel of smoothing.
+fn drawn(marks: &[DebugMark]) -> Vec<(Vec2, Vec2, f32)> {
     const PIECES: usize = 32;
     let (w, h) = SIZE;
     let view_proj = camera().view_projection(w as f32 / h as f32);
     let in_front = |p: Vec3| (view_proj * p.extend(1.0)).w > 0.05;
+    let scale = mark_scale(h);
     let mut out = Vec::new();
-    for s in lines.chunks_exact(2) {
-        let (a, b) = (Vec3::from(s[0].position), Vec3::from(s[1].position));
-        for k in 0..PIECES {
-            let p = a.lerp(b, k as f32 / PIECES as f32);
-            let q = a.lerp(b, (k + 1) as f32 / PIECES as f32);
-            if in_front(p) && in_front(q) {
-                out.push((project(p), project(q)));
+    for m in marks {
+        let (a, b) = (Vec3::from(m.from), Vec3::from(m.to));
+        let reach = (0.5 * m.size + mark_size::OUTLINE) * scale + 1.5;
+        match m.shape() {
+            MarkShape::Dot => {
+                if in_front(a) {
+                    out.push((project(a), project(a), reach));
+                }
+            }
+            MarkShape::Head => {
+                if in_front(b) {
+                    out.push((project(b), project(b), m.size * scale + reach));
+                }
+            }
+            MarkShape::Spike => {
+                if in_front(a) {
+                    let width = (0.5 * mark_size::SPIKE + mark_size::OUTLINE) * scale + 1.5;
+                    out.push((project(a), project(a), m.size * scale + width));
+                }
+            }
+            MarkShape::Line => {
+                for k in 0..PIECES {
+                    let p = a.lerp(b, k as f32 / PIECES as f32);
+                    let q = a.lerp(b, (k + 1) as f32 / PIECES as f32);
+                    if in_front(p) && in_front(q) {
+                        out.push((project(p), project(q), reach));
+                    }
+                }
             }
         }
     }
@@ -101,7 +123,7 @@ fn segments(lines: &[LineVertex]) -> Vec<(Vec2, Vec2)> {
 }
 
 #[test]
-fn each_line_view_changes_the_frame_only_along_its_lines() {
+fn each_mark_view_changes_the_frame_only_along_its_marks() {
     let config = WorldConfig::default();
     let (w, h) = SIZE;
     let mut snap = Snapshot::new(&config, RenderSettings::default(), w, h, None)
@@ -122,13 +144,8 @@ fn each_line_view_changes_the_frame_only_along_its_lines() {
             let mut views = DebugViews::default();
             views.set(layer, true);
             let shown = plain.clone().with_debug(&world, &events, &views);
-            let lines: Vec<LineVertex> = shown
-                .debug_lines
-                .iter()
-                .chain(&shown.debug_lines_over)
-                .copied()
-                .collect();
-            assert!(!lines.is_empty(), "{}: no lines", layer.name());
+            let marks = &shown.debug_marks;
+            assert!(!marks.is_empty(), "{}: no marks", layer.name());
             let with = draw(&mut snap, &shown);
             let changed = differing(&without, &with);
             assert!(
@@ -137,17 +154,17 @@ fn each_line_view_changes_the_frame_only_along_its_lines() {
                 layer.name(),
                 changed.len()
             );
-            let segs = segments(&lines);
+            let segs = drawn(marks);
             let stray = changed
                 .iter()
                 .filter(|&&p| {
                     segs.iter()
-                        .all(|&(a, b)| distance_to_segment(p, a, b) > NEAR_LINE)
+                        .all(|&(a, b, reach)| distance_to_segment(p, a, b) > reach)
                 })
                 .count();
             assert!(
                 stray * 50 <= changed.len(),
-                "{} at {seconds} s: {stray} of {} changed pixels are off its lines",
+                "{} at {seconds} s: {stray} of {} changed pixels are off its marks",
                 layer.name(),
                 changed.len()
             );
@@ -232,5 +249,126 @@ fn views_are_named_in_a_list_and_an_unknown_name_lists_them() {
     assert!(
         error.contains("contacts, impulses, velocities, grid, rest, com"),
         "{error}"
+    );
+}
+
+/// The share of pixels that differ by more than 16/255 in a channel.
+fn share_changed(a: &RgbaImage, b: &RgbaImage) -> f64 {
+    let changed = a
+        .pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| (0..3).any(|c| p.0[c].abs_diff(q.0[c]) > 16))
+        .count();
+    changed as f64 / f64::from(a.width() * a.height())
+}
+
+/// Every view, alone, is seen from the default camera one second into the
+/// default scene: it changes at least 0.5 % of the pixels, at 640x360 and
+/// 1920x1080 and at every quality level, on two seeds.
+#[test]
+fn each_view_is_seen_from_the_default_camera_at_any_size_and_quality() {
+    let config = WorldConfig::default();
+    let cases = [
+        ((640, 360), Quality::High),
+        ((640, 360), Quality::Medium),
+        ((640, 360), Quality::Low),
+        ((1920, 1080), Quality::High),
+    ];
+    let mut unseen = Vec::new();
+    for seed in [1, 2] {
+        let mut world = World::new(config.clone(), seed).expect("scene builds");
+        let mut events = Vec::new();
+        for _ in 0..(1.0 / config.solver.dt).round() as usize {
+            world.step();
+            events.clear();
+            world.take_events(&mut events);
+        }
+        let plain = SceneView::from_world(&world, None);
+        let camera = Camera::overview(plain.room_size);
+        for ((w, h), level) in cases {
+            let mut snap = Snapshot::new(&config, level.settings(), w, h, None)
+                .unwrap_or_else(|e| panic!("cannot render: {e}"));
+            let without = snap.capture(&plain, &camera).expect("frame");
+            for layer in DebugLayer::ALL {
+                let mut views = DebugViews::default();
+                views.set(layer, true);
+                let shown = plain.clone().with_debug(&world, &events, &views);
+                let with = snap.capture(&shown, &camera).expect("frame");
+                let share = share_changed(&without, &with);
+                eprintln!(
+                    "{} at {w}x{h}, {}, seed {seed}: {:.2} %",
+                    layer.name(),
+                    level.name(),
+                    100.0 * share
+                );
+                if share < 0.005 {
+                    unseen.push(format!(
+                        "{} at {w}x{h}, {}, seed {seed}: {:.2} % of the pixels changed ({} marks)",
+                        layer.name(),
+                        level.name(),
+                        100.0 * share,
+                        shown.debug_marks.len()
+                    ));
+                }
+            }
+        }
+    }
+    assert!(unseen.is_empty(), "{}", unseen.join("\n"));
+}
+
+/// An impulse's line fits the scene whatever it carries: a tumbler's weight
+/// over a step is no longer than a few ball radii, and a ball resting on
+/// the floor shows one.
+#[test]
+fn impulse_lines_fit_the_scene_for_every_kind_of_body() {
+    for seed in [1, 4] {
+        let config = WorldConfig::default();
+        let mut world = World::new(config.clone(), seed).expect("scene builds");
+        let mut events = Vec::new();
+        for _ in 0..(3.0 / config.solver.dt).round() as usize {
+            world.step();
+            events.clear();
+            world.take_events(&mut events);
+        }
+        let mut views = DebugViews::default();
+        views.set(DebugLayer::Impulses, true);
+        let shown = SceneView::from_world(&world, None).with_debug(&world, &events, &views);
+        let lines: Vec<f32> = shown
+            .debug_marks
+            .iter()
+            .filter(|m| m.shape() == MarkShape::Line)
+            .map(|m| Vec3::from(m.from).distance(Vec3::from(m.to)))
+            .collect();
+        assert!(!lines.is_empty(), "seed {seed}: no impulse drawn");
+        let r = config.balls.radius as f32;
+        let longest = lines.iter().copied().fold(0.0, f32::max);
+        assert!(
+            longest <= 6.0 * r,
+            "seed {seed}: {longest} m is longer than 6 radii"
+        );
+        // The tumblers' floor contacts carry their weight: drawn, and short.
+        assert!(
+            lines.iter().filter(|&&l| l > 0.5 * r).count() >= world.tumblers().len(),
+            "seed {seed}: {lines:?}"
+        );
+    }
+}
+
+/// Every view has a legend: each mark it draws, named.
+#[test]
+fn every_view_has_a_legend() {
+    for layer in DebugLayer::ALL {
+        let legend = layer.legend();
+        assert!(!legend.is_empty(), "{}", layer.name());
+        assert!(
+            legend.iter().all(|e| !e.text.is_empty()),
+            "{}",
+            layer.name()
+        );
+    }
+    let impulses = DebugLayer::Impulses.legend();
+    assert!(
+        impulses.iter().any(|e| e.text.contains("log")),
+        "{impulses:?}"
     );
 }

@@ -380,6 +380,12 @@ pub struct FrameArgs {
     /// list of: contacts, impulses, velocities, grid, rest, com.
     #[arg(long, value_name = "LIST", value_parser = parse_show)]
     pub show: Option<DebugViews>,
+
+    /// Draw the legend of the debug views --show names in the frame: what
+    /// each colour and mark means (the window shows it while any view is
+    /// on).
+    #[arg(long, requires = "show")]
+    pub legend: bool,
 }
 
 #[derive(Debug, Args)]

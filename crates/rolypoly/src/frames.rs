@@ -12,6 +12,7 @@ use rolypoly_render::{
 };
 
 use crate::cli::FrameArgs;
+use crate::legend::OffscreenLegend;
 use crate::simulation::Simulation;
 
 /// What draws the frames of `render`, `record` and `replay`: the off-screen renderer
@@ -23,6 +24,8 @@ pub struct Frames {
     level: Quality,
     /// The debug views drawn over every frame.
     debug: DebugViews,
+    /// Their legend, drawn into every frame where asked.
+    legend: Option<OffscreenLegend>,
 }
 
 impl Frames {
@@ -45,6 +48,7 @@ impl Frames {
             ..drawn
         };
         let snapshot = Snapshot::new(config, settings, width, height, mesh)?;
+        let legend = args.legend.then(|| OffscreenLegend::new(&snapshot.gpu));
         let overview = Camera::overview(config.room.size.as_vec3());
         let camera = match args.camera {
             Some([ex, ey, ez, tx, ty, tz]) => Camera {
@@ -60,6 +64,7 @@ impl Frames {
             shadows: settings.shadows,
             level,
             debug: args.show.unwrap_or_default(),
+            legend,
         })
     }
 
@@ -86,9 +91,15 @@ impl Frames {
         camera: &Camera,
     ) -> anyhow::Result<image::RgbaImage> {
         let what = format!("the frame at t = {:.3} s", sim.world.time());
-        Ok(self
-            .snapshot
-            .capture_named(&sim.view_showing(light, &self.debug), camera, &what)?)
+        let view = sim.view_showing(light, &self.debug);
+        let snap = &mut self.snapshot;
+        snap.target
+            .render(&snap.gpu, &mut snap.renderer, &view, camera)?;
+        if let Some(legend) = &mut self.legend {
+            let size = [snap.target.width, snap.target.height];
+            legend.draw(&snap.gpu, snap.target.view(), size, &self.debug);
+        }
+        Ok(snap.target.read(&snap.gpu, &what)?)
     }
 
     /// The device the frames are drawn with.

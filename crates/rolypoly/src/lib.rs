@@ -13,8 +13,10 @@
 pub mod cli;
 pub mod clip;
 pub mod commands;
+pub mod egui_paint;
 pub mod engine;
 pub mod frames;
+pub mod legend;
 pub mod sandbox;
 pub mod scene;
 pub mod simulation;

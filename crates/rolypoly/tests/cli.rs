@@ -859,6 +859,52 @@ fn render_show_draws_the_views_it_names() {
     assert!(changed > 30, "--show changed only {changed} pixels");
 }
 
+/// `--legend` draws what the views' marks mean into the frame's top left,
+/// and nothing elsewhere; without `--show` it is refused.
+#[test]
+fn render_legend_names_the_views_marks_in_the_top_left() {
+    let (bare, legend) = (scratch("views-bare.png"), scratch("views-legend.png"));
+    for (out, extra) in [(&bare, None), (&legend, Some("--legend"))] {
+        let out_str = out.to_str().expect("UTF-8 path");
+        let mut args = vec![
+            "render",
+            "--time",
+            "1",
+            "--size",
+            "640x360",
+            "--show",
+            "contacts,com",
+            "--out",
+            out_str,
+        ];
+        args.extend(extra);
+        let output = rolypoly(&args);
+        assert!(output.status.success(), "{}", stderr(&output));
+    }
+    let (a, b) = (
+        image::open(&bare).expect("png").to_rgba8(),
+        image::open(&legend).expect("png").to_rgba8(),
+    );
+    let (mut inside, mut outside) = (0, 0);
+    for ((x, y, p), q) in a.enumerate_pixels().zip(b.pixels()) {
+        if (0..3).any(|c| p.0[c].abs_diff(q.0[c]) > 16) {
+            // The legend's two views take at most the left half, the top
+            // two thirds.
+            if x < 320 && y < 240 {
+                inside += 1;
+            } else {
+                outside += 1;
+            }
+        }
+    }
+    assert!(inside > 5_000, "the legend changed only {inside} pixels");
+    assert_eq!(outside, 0, "the legend reached beyond the top left");
+    let output = rolypoly(&["render", "--legend", "--out", "never.png"]);
+    let err = stderr(&output);
+    assert_eq!(output.status.code(), Some(2), "{err}");
+    assert!(err.contains("--show"), "{err}");
+}
+
 #[test]
 fn the_gpu_engine_simulates_and_traces_the_balls_it_steps() {
     let args = [

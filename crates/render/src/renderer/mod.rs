@@ -25,6 +25,7 @@ use bindings::Layouts;
 use bloom::BloomPipelines;
 use bytemuck::{Pod, Zeroable};
 use cursor::Cursor;
+use debug_marks::DebugMarksPass;
 use glam::UVec3;
 use occlusion::OcclusionPipeline;
 use pipelines::Pipelines;
@@ -38,6 +39,7 @@ use wgpu::util::DeviceExt;
 mod bindings;
 mod bloom;
 mod cursor;
+mod debug_marks;
 mod occlusion;
 mod pipelines;
 mod targets;
@@ -179,8 +181,8 @@ pub struct Renderer {
     /// face it casts into.
     shadow_balls: InstanceBuffer<BallInstance>,
     shadow_tumblers: InstanceBuffer<Instance>,
-    /// The debug views' line segments (see [`crate::debug_view`]).
-    lines: VertexBuffer,
+    /// The debug views' marks (see [`crate::debug_view`]).
+    marks: DebugMarksPass,
     /// The faces each caster reaches, reused frame to frame.
     faces_reached: Vec<u8>,
     /// The tumbler mesh's bounding sphere, in its own space.
@@ -191,9 +193,6 @@ pub struct Renderer {
     /// Whether the passes are timed (the profiler is open).
     timing: bool,
 }
-
-/// The debug views' vertices: filled and uploaded as instances are.
-type VertexBuffer = InstanceBuffer<crate::debug_view::LineVertex>;
 
 /// Where each face's casters lie in the shadow lists.
 struct FaceRanges {
@@ -275,7 +274,7 @@ impl Renderer {
             gpu_balls: None,
             shadow_balls: InstanceBuffer::new(device, "shadow balls"),
             shadow_tumblers: InstanceBuffer::new(device, "shadow tumblers"),
-            lines: InstanceBuffer::new(device, "debug lines"),
+            marks: DebugMarksPass::new(device, output_format),
             faces_reached: Vec::new(),
             tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
@@ -340,11 +339,6 @@ impl Renderer {
             instances::fill_balls(&mut self.balls.items, view);
             self.balls.upload(gpu);
         }
-        self.lines.items.clear();
-        self.lines.items.extend_from_slice(&view.debug_lines);
-        self.lines.items.extend_from_slice(&view.debug_lines_over);
-        self.lines.upload(gpu);
-        let lines_over = view.debug_lines.len() as u32;
         let faces = shadow::face_view_projections(view.light.position);
         self.shadow_cube
             .update(&gpu.queue, &faces, view.light.position);
@@ -374,11 +368,17 @@ impl Renderer {
                 .then(|| self.sort_shadow_casters(gpu, view, &ranges));
             draw_calls += self.shadow_pass(&mut encoder, &ranges, culled.as_ref(), timed);
         }
+        let scene_size = self
+            .targets
+            .as_ref()
+            .map_or((width, height), |t| t.scene_size);
+        self.marks
+            .upload(gpu, &view.debug_marks, camera, (width, height), scene_size);
         let targets = self
             .targets
             .as_ref()
             .ok_or_else(|| RenderError::Readback("no render targets".into()))?;
-        draw_calls += self.scene_pass(&mut encoder, targets, &ranges, lines_over, timed);
+        draw_calls += self.scene_pass(&mut encoder, targets, &ranges, timed);
         if view.light.occlusion {
             draw_calls +=
                 self.occlusion
@@ -542,14 +542,13 @@ impl Renderer {
     }
 
     /// The lit scene into the HDR target, and the surfaces' normals and
-    /// distances for the occlusion, resolved there from their samples; the
-    /// debug lines, those from `lines_over` on drawn over everything.
+    /// distances for the occlusion and the debug marks, resolved there
+    /// from their samples.
     fn scene_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         targets: &Targets,
         ranges: &Ranges,
-        lines_over: u32,
         timed: bool,
     ) -> u32 {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -591,19 +590,6 @@ impl Renderer {
         pass.set_pipeline(&self.pipelines.ball);
         draw_calls += draw(&mut pass, &self.quad, ball_range);
         pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
-        // ... the debug views' lines over what is lit ...
-        let all_lines = self.lines.items.len() as u32;
-        pass.set_vertex_buffer(0, self.lines.buffer.slice(..));
-        for (pipeline, vertices) in [
-            (&self.pipelines.lines, 0..lines_over),
-            (&self.pipelines.lines_over, lines_over..all_lines),
-        ] {
-            if !vertices.is_empty() {
-                pass.set_pipeline(pipeline);
-                pass.draw(vertices, 0..1);
-                draw_calls += 1;
-            }
-        }
         // ... then what glows and is not lit (the bulb, the fireball's heart) ...
         pass.set_pipeline(&self.pipelines.emissive);
         draw_calls += draw(&mut pass, &self.sphere, ranges.lamps.clone());
@@ -651,9 +637,11 @@ impl Renderer {
         pass.set_pipeline(&self.pipelines.tonemap);
         pass.set_bind_group(0, &targets.tonemap_bind_group, &[]);
         pass.draw(0..3, 0..1);
-        1 + self
-            .cursor
-            .draw(queue, &mut pass, targets.width, targets.height)
+        // The debug views over the finished frame, the cursor over them.
+        1 + self.marks.draw(&mut pass, &targets.marks_bind_group)
+            + self
+                .cursor
+                .draw(queue, &mut pass, targets.width, targets.height)
     }
 
     fn ensure_targets(&mut self, gpu: &Gpu, width: u32, height: u32) {
@@ -675,6 +663,7 @@ impl Renderer {
             smooth_sampler: &self.smooth_sampler,
             bloom: &self.bloom,
             occlusion: &self.occlusion,
+            marks: &self.marks,
         };
         self.targets = Some(Targets::new(&gpu.device, (width, height), scene_size, &kit));
     }

@@ -3,7 +3,6 @@
 
 use super::bindings::Layouts;
 use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT, RenderSettings};
-use crate::debug_view::LineVertex;
 use crate::instances::{BALL_MATERIAL, BallInstance, Instance};
 use crate::mesh::Vertex;
 use crate::shadow;
@@ -18,10 +17,6 @@ pub(super) struct Pipelines {
     pub emissive: wgpu::RenderPipeline,
     /// See-through particles, blended over what is behind.
     pub glow: wgpu::RenderPipeline,
-    /// The debug views' line segments, depth tested ...
-    pub lines: wgpu::RenderPipeline,
-    /// ... and drawn over everything.
-    pub lines_over: wgpu::RenderPipeline,
     /// Meshes into a shadow face.
     pub shadow: wgpu::RenderPipeline,
     /// Balls into a shadow face.
@@ -166,46 +161,6 @@ impl Pipelines {
             }),
         );
 
-        // Lines over the scene: depth tested (or, for what lies inside a
-        // body, not), never written; the surfaces' geometry for the
-        // occlusion left as it is.
-        let line_buffers = [Some(LineVertex::layout())];
-        let lines_pipeline = |label: &str, compare: wgpu::CompareFunction| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: Some(&scene_pipeline_layout),
-                vertex: wgpu::VertexState {
-                    module: &shader,
-                    entry_point: Some("vs_line"),
-                    compilation_options: Default::default(),
-                    buffers: &line_buffers,
-                },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::LineList,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(false),
-                    depth_compare: Some(compare),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: wgpu::MultisampleState {
-                    count: msaa,
-                    ..Default::default()
-                },
-                fragment: Some(wgpu::FragmentState {
-                    module: &shader,
-                    entry_point: Some("fs_line"),
-                    compilation_options: Default::default(),
-                    targets: &scene_targets(Some(wgpu::BlendState::REPLACE)),
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        };
-
         let shadow_pipeline_layout =
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: Some("shadow"),
@@ -272,8 +227,6 @@ impl Pipelines {
             ball: ball_pipeline,
             emissive: emissive_pipeline,
             glow: glow_pipeline,
-            lines: lines_pipeline("debug lines", wgpu::CompareFunction::LessEqual),
-            lines_over: lines_pipeline("debug lines over", wgpu::CompareFunction::Always),
             shadow: shadow_pipeline,
             ball_shadow: ball_shadow_pipeline,
             tonemap: tonemap_pipeline,

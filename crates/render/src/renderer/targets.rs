@@ -3,6 +3,7 @@
 //! resolved), its depth, the bloom's chain and the contact occlusion, and tone mapping's bind group over them.
 
 use super::bloom::{BloomChain, BloomPipelines};
+use super::debug_marks::DebugMarksPass;
 use super::occlusion::{OcclusionPipeline, OcclusionTarget};
 use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT};
 
@@ -24,6 +25,8 @@ pub(super) struct Targets {
     pub occlusion: OcclusionTarget,
     /// Reads `hdr`, the glow and the occlusion for tone mapping.
     pub tonemap_bind_group: wgpu::BindGroup,
+    /// Reads `geometry` for the debug marks' depth.
+    pub marks_bind_group: wgpu::BindGroup,
 }
 
 /// What the targets are made with besides their size.
@@ -34,6 +37,7 @@ pub(super) struct TargetKit<'a> {
     pub smooth_sampler: &'a wgpu::Sampler,
     pub bloom: &'a BloomPipelines,
     pub occlusion: &'a OcclusionPipeline,
+    pub marks: &'a DebugMarksPass,
 }
 
 impl Targets {
@@ -114,6 +118,7 @@ impl Targets {
                 },
             ],
         });
+        let marks_bind_group = kit.marks.bind_group(device, &geometry);
         Targets {
             width,
             height,
@@ -126,6 +131,7 @@ impl Targets {
             bloom,
             occlusion,
             tonemap_bind_group,
+            marks_bind_group,
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The on-screen HUD (egui): frame rate, timings, counts, modes, the seed,
 //! a small plot of the total energy, and the help panel (I7).
 
+use crate::egui_paint::EguiPainter;
 use rolypoly_fx::Effects;
 use rolypoly_physics::World;
 use rolypoly_render::Gpu;
@@ -164,7 +165,7 @@ const KEYS: [(&str, &str); 21] = [
 pub struct Hud {
     context: egui::Context,
     input: egui_winit::State,
-    renderer: egui_wgpu::Renderer,
+    painter: EguiPainter,
 }
 
 impl Hud {
@@ -178,12 +179,10 @@ impl Hud {
             None,
             None,
         );
-        let renderer =
-            egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
         Hud {
             context,
             input,
-            renderer,
+            painter: EguiPainter::new(gpu, format),
         }
     }
 
@@ -292,53 +291,8 @@ impl Hud {
             }
         });
         self.input
-            .handle_platform_output(window, output.platform_output);
-        let pixels_per_point = output.pixels_per_point;
-        let jobs = self.context.tessellate(output.shapes, pixels_per_point);
-        let screen = egui_wgpu::ScreenDescriptor {
-            size_in_pixels: size,
-            pixels_per_point,
-        };
-        // Texture changes must be applied (and taken out) every frame.
-        for (id, deltas) in output.textures_delta.set.drain() {
-            for delta in &deltas {
-                self.renderer
-                    .update_texture(&gpu.device, &gpu.queue, id, delta);
-            }
-        }
-        let mut encoder = gpu
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("hud") });
-        let extra =
-            self.renderer
-                .update_buffers(&gpu.device, &gpu.queue, &mut encoder, &jobs, &screen);
-        {
-            let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("hud"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: target,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                depth_stencil_attachment: None,
-                timestamp_writes: None,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            let mut pass = pass.forget_lifetime();
-            self.renderer.render(&mut pass, &jobs, &screen);
-        }
-        let submitted = gpu
-            .queue
-            .submit(extra.into_iter().chain([encoder.finish()]));
-        for id in output.textures_delta.free.drain() {
-            self.renderer.free_texture(&id);
-        }
-        submitted
+            .handle_platform_output(window, std::mem::take(&mut output.platform_output));
+        self.painter.paint(gpu, &self.context, output, target, size)
     }
 }
 

@@ -333,6 +333,7 @@ impl App {
         };
         self.hud_state.render_cpu = stats.cpu_time.as_secs_f64();
         let balls = view.balls.len();
+        let debug = self.panel.debug;
         let (panel, sandbox, profiler) = (&mut self.panel, &mut self.sandbox, &self.profiler);
         let mut action = None;
         let hud_started = Instant::now();
@@ -341,6 +342,7 @@ impl App {
             .draw(&r.window, &r.gpu, &target, [w, h], &self.hud_state, |ui| {
                 action = panel.show(ui, sandbox);
                 profiler.show(ui.ctx());
+                crate::legend::show(ui.ctx(), &debug);
             });
         r.frames_submitted += 1;
         r.in_flight.push_back((r.frames_submitted, submitted));
