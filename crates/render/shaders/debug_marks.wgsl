@@ -24,7 +24,7 @@ struct Overlay {
 const OUTLINE: f32 = 1.0;
 const OUTLINE_COLOR: vec3<f32> = vec3<f32>(0.02, 0.02, 0.03);
 // How much of a hidden mark shows.
-const HIDDEN: f32 = 0.5;
+const HIDDEN: f32 = 0.6;
 // An arrowhead's half width over its length.
 const HEAD_WIDTH: f32 = 0.5;
 // A spike's width, in mark pixels (debug_view.rs's mark_size::SPIKE).

@@ -86,11 +86,11 @@ const VELOCITY_SECONDS: f32 = 0.25;
 /// alike at any resolution and quality level.
 pub mod mark_size {
     /// A contact's dot, across.
-    pub const DOT: f32 = 10.0;
+    pub const DOT: f32 = 13.0;
     /// An impact's dot, across.
-    pub const IMPACT_DOT: f32 = 14.0;
+    pub const IMPACT_DOT: f32 = 17.0;
     /// A contact's normal, drawn from its dot.
-    pub const NORMAL: f32 = 36.0;
+    pub const NORMAL: f32 = 22.0;
     /// Where an impulse acts, across.
     pub const IMPULSE_DOT: f32 = 10.0;
     /// A spike's width (see debug_marks.wgsl's `SPIKE_WIDTH`).

@@ -930,6 +930,47 @@ fn the_gpu_engine_simulates_and_traces_the_balls_it_steps() {
     assert_eq!(stdout(&rolypoly(&args)), stdout(&output));
 }
 
+/// A trace's scene line lists every ball's radius and mass as the scene
+/// made them, the same bytes on either engine, for scenes of several sizes
+/// and balls placed by hand.
+#[test]
+fn the_trace_header_is_the_same_on_both_engines() {
+    let placed = scene_file(
+        "header-placed.toml",
+        "[balls]\ncount = 3\n[[balls.placement]]\nposition = [0.3, 0.5, 0.3]\n\
+         velocity = [0.0, 0.0, 0.0]\nradius = 0.13\nmass = 0.3\n",
+    );
+    let placed = placed.to_str().expect("UTF-8 path");
+    for extra in [
+        &["--balls", "7"][..],
+        &["--balls", "40", "--seed", "3"],
+        &["--scene", placed],
+    ] {
+        let header = |engine: &str| {
+            let mut args = vec![
+                "simulate", "--engine", engine, "--steps", "1", "--trace", "-",
+            ];
+            args.extend_from_slice(extra);
+            let output = rolypoly(&args);
+            assert!(output.status.success(), "{engine}: {}", stderr(&output));
+            stdout(&output)
+                .lines()
+                .next()
+                .expect("a scene line")
+                .to_string()
+        };
+        let (cpu, gpu) = (header("cpu"), header("gpu"));
+        assert_eq!(cpu, gpu, "{extra:?}");
+        let line: serde_json::Value = serde_json::from_str(&gpu).expect("JSON");
+        let balls = line["balls"].as_array().expect("balls");
+        assert!(!balls.is_empty(), "{extra:?}: {gpu}");
+        assert!(
+            balls.iter().all(|b| b["radius"].as_f64() > Some(0.0)),
+            "{gpu}"
+        );
+    }
+}
+
 #[test]
 fn the_gpu_engine_is_chosen_by_flag_or_scene_and_a_wrong_name_is_refused() {
     let output = rolypoly(&["simulate", "--engine", "quantum", "--steps", "1"]);

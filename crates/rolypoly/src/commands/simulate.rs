@@ -23,6 +23,13 @@ pub fn simulate(
     dt: f64,
     gpu: bool,
 ) -> anyhow::Result<()> {
+    // The trace's scene line is written while the world still holds its
+    // balls as the scene made them, on either engine: the GPU engine keeps
+    // them in single precision.
+    let mut writer = args.trace.as_deref().map(trace::create).transpose()?;
+    if let Some(writer) = writer.as_mut() {
+        writer.scene(world, seed)?;
+    }
     let mut balls = if gpu {
         let compute = Compute::headless()?;
         Some(GpuBalls::on_compute(&compute, world)?)
@@ -41,13 +48,8 @@ pub fn simulate(
         seed,
         every: args.every,
     };
-    match &args.trace {
-        None => {
-            let summary = run::<io::Sink>(world, balls.as_mut(), scene_name, &options, None)?;
-            print_summary(&summary)
-        }
-        Some(path) => {
-            let mut writer = trace::create(path)?;
+    match (&args.trace, writer) {
+        (Some(path), Some(mut writer)) => {
             let summary = run(
                 world,
                 balls.as_mut(),
@@ -62,6 +64,10 @@ pub fn simulate(
             } else {
                 print_summary(&summary)
             }
+        }
+        _ => {
+            let summary = run::<io::Sink>(world, balls.as_mut(), scene_name, &options, None)?;
+            print_summary(&summary)
         }
     }
 }
@@ -132,9 +138,10 @@ fn event_index(kind: &EventKind) -> usize {
     EVENT_KINDS.iter().position(|&k| k == name).unwrap_or(0)
 }
 
-/// Runs `options.steps` steps of `world`. With a trace, writes the scene
-/// line, the state at step 0, then every `options.every` steps and at the
-/// last step, each state line carrying the events since the previous one.
+/// Runs `options.steps` steps of `world`. With a trace (whose scene line is
+/// written), writes the state at step 0, then every `options.every` steps
+/// and at the last step, each state line carrying the events since the
+/// previous one.
 pub fn run<W: Write>(
     world: &mut World,
     mut gpu: Option<&mut GpuBalls>,
@@ -148,7 +155,6 @@ pub fn run<W: Write>(
         world.launch_fireball(None);
     }
     if let Some(trace) = trace.as_deref_mut() {
-        trace.scene(world, options.seed)?;
         with_balls(world, gpu.as_deref(), |world| trace.state(world, &[]))??;
     }
 
