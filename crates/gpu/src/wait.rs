@@ -3,7 +3,7 @@
 //! gives one error naming what was waited for, instead of a program that
 //! hangs.
 
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Duration;
 
 use thiserror::Error;
@@ -17,10 +17,38 @@ pub const DEFAULT_GPU_TIMEOUT: Duration = Duration::from_secs(30);
 /// anywhere in it (a renderer's, the engine's, a clip's) has it.
 static PROGRAM_BOUND_NANOS: AtomicU64 = AtomicU64::new(DEFAULT_GPU_TIMEOUT.as_nanos() as u64);
 
-/// Sets the bound of every wait on the GPU from now on (`--gpu-timeout`).
+/// Whether a wait that runs out also arms [`exit_if_stuck`]: set by the
+/// program, not by a library's user, whose process is not ours to end.
+static EXIT_WHEN_STUCK: AtomicBool = AtomicBool::new(false);
+
+/// How long the program has to end after a wait ran out, before it is
+/// ended anyway.
+const GRACE: Duration = Duration::from_secs(5);
+
+/// Sets the bound of every wait on the GPU from now on (`--gpu-timeout`),
+/// for a program that ends on the error: once a wait runs out, the program
+/// is ended within a few seconds even if letting go of the GPU hangs.
 pub fn set_program_gpu_timeout(limit: Duration) {
     let nanos = u64::try_from(limit.as_nanos()).unwrap_or(u64::MAX).max(1);
     PROGRAM_BOUND_NANOS.store(nanos, Ordering::Relaxed);
+    EXIT_WHEN_STUCK.store(true, Ordering::Relaxed);
+}
+
+/// After a wait ran out the program unwinds to print `timeout`, and on the
+/// way drops its device and queue; wgpu waits for the GPU to go idle when
+/// a queue is dropped, with no bound. A GPU that stalled may never be idle,
+/// so a watchdog prints the error and ends the program if it is still
+/// running after [`GRACE`].
+fn exit_if_stuck(timeout: &GpuTimeout) {
+    if !EXIT_WHEN_STUCK.load(Ordering::Relaxed) {
+        return;
+    }
+    let message = timeout.to_string();
+    std::thread::spawn(move || {
+        std::thread::sleep(GRACE);
+        eprintln!("error: {message}");
+        std::process::exit(1);
+    });
 }
 
 /// The bound new waits start with: [`DEFAULT_GPU_TIMEOUT`] unless
@@ -94,11 +122,15 @@ impl WaitBound {
             timeout: Some(self.limit),
         }) {
             Ok(_) => Ok(()),
-            Err(wgpu::PollError::Timeout) => Err(WaitError::Timeout(GpuTimeout {
-                what: what(),
-                adapter: self.adapter.clone(),
-                bound: self.limit,
-            })),
+            Err(wgpu::PollError::Timeout) => {
+                let timeout = GpuTimeout {
+                    what: what(),
+                    adapter: self.adapter.clone(),
+                    bound: self.limit,
+                };
+                exit_if_stuck(&timeout);
+                Err(WaitError::Timeout(timeout))
+            }
             Err(e) => Err(WaitError::Failed {
                 what: what(),
                 message: e.to_string(),

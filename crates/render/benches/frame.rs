@@ -18,7 +18,8 @@
 //! none, and the processor's time to build their lines from the world.
 //!
 //! `-- --row-seconds S` draws each row for at least S seconds instead of
-//! two (a GPU's rows need less); `-- --million` ends with a million balls
+//! two (a GPU's rows need less); `-- --only TEXT,TEXT` draws only the
+//! scenes whose name holds one of them (`default,10k`); `-- --million` ends with a million balls
 //! drawn from the GPU engine's own buffer (as `--engine gpu` draws the
 //! million-ball scene), the drawing alone, against the target of 30 frames
 //! a second on an H100-class GPU.
@@ -53,6 +54,11 @@ fn main() {
     };
     let _ = ROW_SECONDS.set(row_seconds);
     let million = args.iter().any(|a| a == "--million");
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|at| args.get(at + 1))
+        .cloned();
     let mut ten_k = WorldConfig::default();
     ten_k.balls.count = 10_000;
     ten_k.room.size = glam::DVec3::new(16.0, 6.0, 16.0);
@@ -74,6 +80,10 @@ fn main() {
         "{:<36} {:>8} {:>10} {:>14} {:>11}",
         "scene", "frames", "frames/s", "CPU ms/frame", "draw calls"
     );
+    let cases = cases.into_iter().filter(|(name, _)| {
+        only.as_ref()
+            .is_none_or(|list| list.split(',').any(|text| name.contains(text)))
+    });
     for (name, config) in cases {
         let mut world = match World::new(config.clone(), 1) {
             Ok(w) => w,
@@ -182,9 +192,10 @@ fn main() {
             shown = plain.clone().with_debug(&stepped, &[], &views);
         }
         let build_ms = started.elapsed().as_secs_f64() * 1e3 / f64::from(builds);
-        let without = measure(&mut snap, &plain, &camera);
+        // Frame by frame in turn, so that whatever else the machine does
+        // slows both alike.
+        let (without, frame) = measure_in_turn(&mut snap, [&plain, &shown], &camera);
         print_row("  half a second in", &without);
-        let frame = measure(&mut snap, &shown, &camera);
         print_row("  every debug view", &frame);
         println!(
             "{:<36} {:>8} {:>10.2} {:>14.3} {:>11}",
@@ -194,6 +205,19 @@ fn main() {
             build_ms,
             shown.debug_marks.len()
         );
+        // Each view alone, in turn with none: which one costs what.
+        for layer in DebugLayer::ALL {
+            let mut alone = DebugViews::default();
+            alone.set(layer, true);
+            let view = plain.clone().with_debug(&stepped, &[], &alone);
+            let (none, frame) = measure_in_turn(&mut snap, [&plain, &view], &camera);
+            println!(
+                "{:<36} {:>8} {:>10.2}",
+                format!("  {} alone over none", layer.name()),
+                "",
+                frame.per_second / none.per_second
+            );
+        }
     }
     if million {
         million_from_the_gpu_engine();
@@ -273,6 +297,44 @@ struct Frames {
     per_second: f64,
     cpu_ms: f64,
     draw_calls: u32,
+}
+
+/// Draws the two `views` in turn, frame by frame, for as long as
+/// [`measure`] draws one; returns each one's frames.
+fn measure_in_turn(
+    snap: &mut Snapshot,
+    views: [&SceneView; 2],
+    camera: &Camera,
+) -> (Frames, Frames) {
+    let min_seconds = 2.0 * ROW_SECONDS.get().copied().unwrap_or(2.0);
+    let mut spent = [Duration::ZERO; 2];
+    let mut cpu = [Duration::ZERO; 2];
+    let mut draw_calls = [0; 2];
+    let mut count = 0u32;
+    for view in views {
+        snap.draw(view, camera)
+            .unwrap_or_else(|e| panic!("frame: {e}"));
+    }
+    let start = Instant::now();
+    while count < 3 || start.elapsed().as_secs_f64() < min_seconds {
+        for (k, view) in views.iter().enumerate() {
+            let began = Instant::now();
+            let stats = snap
+                .draw(view, camera)
+                .unwrap_or_else(|e| panic!("frame: {e}"));
+            spent[k] += began.elapsed();
+            cpu[k] += stats.cpu_time;
+            draw_calls[k] = stats.draw_calls;
+        }
+        count += 1;
+    }
+    let frames = |k: usize| Frames {
+        count,
+        per_second: f64::from(count) / spent[k].as_secs_f64(),
+        cpu_ms: cpu[k].as_secs_f64() * 1e3 / f64::from(count),
+        draw_calls: draw_calls[k],
+    };
+    (frames(0), frames(1))
 }
 
 /// Draws `view` over and over, at least `MIN_FRAMES` times and for at

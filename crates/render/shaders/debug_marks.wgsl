@@ -13,6 +13,8 @@ struct Overlay {
     // xy: the output's size; zw: the scene's (lit at a lower resolution at
     // lower quality levels).
     sizes: vec4<f32>,
+    // x: output pixels a metre spans at clip w = 1.
+    lens: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> overlay: Overlay;
@@ -39,6 +41,8 @@ struct MarkIn {
     @location(1) to_size: vec4<f32>,
     // rgb: colour; a: 1 over everything.
     @location(2) color: vec4<f32>,
+    // x: the most its size may be, in metres where it is (0: no most).
+    @location(3) cap: vec4<f32>,
 };
 
 struct MarkOut {
@@ -82,6 +86,15 @@ fn vs_mark(@builtin(vertex_index) corner: u32, m: MarkIn) -> MarkOut {
     }
     let pa = to_pixels(ca);
     let pb = to_pixels(cb);
+    // Its size in output pixels, no more than its cap seen where it is.
+    var size = m.to_size.w * scale;
+    if m.cap.x > 0.0 {
+        var w = ca.w;
+        if shape > 1.5 && shape < 2.5 {
+            w = cb.w;
+        }
+        size = min(size, m.cap.x * overlay.lens.x / w);
+    }
     let span = pb - pa;
     let len = length(span);
     var dir = vec2<f32>(1.0, 0.0);
@@ -89,14 +102,12 @@ fn vs_mark(@builtin(vertex_index) corner: u32, m: MarkIn) -> MarkOut {
         dir = span / len;
     }
     let across = vec2<f32>(-dir.y, dir.x);
-    var half = 0.5 * m.to_size.w * scale;
+    var half = 0.5 * size;
     // Room for the outline and a pixel of smoothing.
-    let pad = OUTLINE * scale + 1.0;
-    // Two triangles: corners (0, 0), (1, 0), (0, 1), (0, 1), (1, 0), (1, 1).
-    let k = array<vec2<f32>, 6>(
-        vec2<f32>(0.0, 0.0), vec2<f32>(1.0, 0.0), vec2<f32>(0.0, 1.0),
-        vec2<f32>(0.0, 1.0), vec2<f32>(1.0, 0.0), vec2<f32>(1.0, 1.0),
-    )[corner];
+    let pad = OUTLINE * scale + 0.75;
+    // A strip of two triangles over the corners (0, 0), (1, 0), (0, 1),
+    // (1, 1): four vertices a mark.
+    let k = vec2<f32>(f32(corner & 1u), f32(corner >> 1u));
     var local: vec2<f32>;
     var pixel: vec2<f32>;
     var clip: vec4<f32>;
@@ -105,7 +116,7 @@ fn vs_mark(@builtin(vertex_index) corner: u32, m: MarkIn) -> MarkOut {
     if shape > 2.5 {
         // A spike: a line of its own length on screen, from its start
         // towards where its end shows.
-        drawn_length = m.to_size.w * scale;
+        drawn_length = size;
         half = 0.5 * SPIKE_WIDTH * scale;
         local = vec2<f32>(mix(-half - pad, drawn_length + half + pad, k.x), mix(-half - pad, half + pad, k.y));
         pixel = pa + dir * local.x + across * local.y;
@@ -126,7 +137,7 @@ fn vs_mark(@builtin(vertex_index) corner: u32, m: MarkIn) -> MarkOut {
         world = a;
     } else {
         // An arrowhead: its tip at the end, its base `length` back.
-        let head = m.to_size.w * scale;
+        let head = size;
         drawn_length = head;
         half = HEAD_WIDTH * head;
         local = vec2<f32>(mix(-pad, head + pad, k.x), mix(-half - pad, half + pad, k.y));

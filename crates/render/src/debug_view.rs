@@ -11,7 +11,7 @@
 //! coloured ball alike and at any distance (as Box2D's, Jolt's and MuJoCo's
 //! debug draws do). Marks hidden behind a body are drawn faintly, not lost.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::fmt;
 
 use glam::{DVec3, Vec3};
@@ -99,7 +99,8 @@ pub mod mark_size {
     pub const COM_DOT: f32 = 14.0;
     /// A line's width.
     pub const LINE: f32 = 2.0;
-    /// A vector's width (impulses, velocities).
+    /// A vector's width (impulses, a tumbler's velocity; a ball's, one of
+    /// thousands in a crowd, is a line's).
     pub const VECTOR: f32 = 3.0;
     /// An arrowhead's length.
     pub const HEAD: f32 = 14.0;
@@ -223,11 +224,17 @@ pub struct DebugMark {
     /// Its colour (linear RGB), and 1 in alpha to be drawn over everything,
     /// 0 to be drawn faint where a body hides it.
     pub color: [f32; 4],
+    /// The most its size may be, in metres seen where it is (0: no most):
+    /// a contact's dot is never larger than its ball, an arrowhead never
+    /// longer than half its arrow, so that a crowd far off stays legible
+    /// (and cheap to draw); then a pad.
+    pub cap: [f32; 4],
 }
 
 impl DebugMark {
-    const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
-        wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x4, 2 => Float32x4];
+    const ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+        0 => Float32x4, 1 => Float32x4, 2 => Float32x4, 3 => Float32x4
+    ];
 
     /// The instance buffer's layout.
     pub fn layout() -> wgpu::VertexBufferLayout<'static> {
@@ -313,7 +320,17 @@ struct Marks {
 }
 
 impl Marks {
-    fn push(&mut self, shape: MarkShape, from: Vec3, to: Vec3, size: f32, color: Vec3) {
+    /// A mark at most `cap` metres large where it is (0: no most).
+    #[allow(clippy::too_many_arguments)]
+    fn push_capped(
+        &mut self,
+        shape: MarkShape,
+        from: Vec3,
+        to: Vec3,
+        size: f32,
+        cap: f32,
+        color: Vec3,
+    ) {
         let color = color.min(Vec3::ONE);
         self.marks.push(DebugMark {
             from: from.to_array(),
@@ -321,7 +338,12 @@ impl Marks {
             to: to.to_array(),
             size,
             color: [color.x, color.y, color.z, if self.over { 1.0 } else { 0.0 }],
+            cap: [cap, 0.0, 0.0, 0.0],
         });
+    }
+
+    fn push(&mut self, shape: MarkShape, from: Vec3, to: Vec3, size: f32, color: Vec3) {
+        self.push_capped(shape, from, to, size, 0.0, color);
     }
 
     fn segment(&mut self, a: Vec3, b: Vec3, color: Vec3) {
@@ -332,23 +354,50 @@ impl Marks {
         self.push(MarkShape::Dot, at, at, across, color);
     }
 
-    /// An arrow from `from` along `along`, its head sized in pixels.
-    fn arrow(&mut self, from: Vec3, along: Vec3, color: Vec3) {
-        if along.length() < 1e-4 {
+    /// An arrow from `from` along `along`, `width` wide, its head sized in
+    /// pixels and never longer than half the arrow.
+    fn arrow(&mut self, from: Vec3, along: Vec3, width: f32, color: Vec3) {
+        let length = along.length();
+        if length < 1e-4 {
             return;
         }
         let to = from + along;
-        self.push(MarkShape::Line, from, to, mark_size::VECTOR, color);
-        self.push(MarkShape::Head, from, to, mark_size::HEAD, color);
+        self.push(MarkShape::Line, from, to, width, color);
+        self.push_capped(
+            MarkShape::Head,
+            from,
+            to,
+            mark_size::HEAD,
+            0.5 * length,
+            color,
+        );
     }
 
-    /// The twelve edges of the box `lo..lo + size`.
-    fn cube(&mut self, lo: Vec3, size: f32, color: Vec3) {
-        let c = |x: f32, y: f32, z: f32| lo + Vec3::new(x, y, z) * size;
-        for (a, b) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
-            self.segment(c(0.0, a, b), c(1.0, a, b), color);
-            self.segment(c(a, 0.0, b), c(a, 1.0, b), color);
-            self.segment(c(a, b, 0.0), c(a, b, 1.0), color);
+    /// The edges of boxes of side `size` with their lowest corners at
+    /// `corners`, each edge once however many boxes share it (in a crowd,
+    /// up to four do).
+    fn boxes(&mut self, corners: &[DVec3], size: f64, color: Vec3) {
+        let Some(&origin) = corners.first() else {
+            return;
+        };
+        let mut drawn: HashSet<([i64; 3], usize)> = HashSet::with_capacity(4 * corners.len());
+        for lo in corners {
+            let cell = ((*lo - origin) / size).round().as_i64vec3().to_array();
+            for axis in 0..3 {
+                let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+                for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    let mut start = cell;
+                    start[u] += a;
+                    start[v] += b;
+                    if !drawn.insert((start, axis)) {
+                        continue;
+                    }
+                    let from = origin + glam::I64Vec3::from_array(start).as_dvec3() * size;
+                    let mut to = from;
+                    to[axis] += size;
+                    self.segment(from.as_vec3(), to.as_vec3(), color);
+                }
+            }
         }
     }
 }
@@ -471,6 +520,18 @@ impl DebugLayer {
 struct Shown {
     probe: ContactProbe,
     state: State,
+}
+
+/// The radius of the smaller body a contact joins: its ball's, or a
+/// tumbler's round bottom for a tumbler's.
+fn contact_radius(world: &World, probe: &ContactProbe) -> f64 {
+    let radii = world.balls().radii();
+    probe
+        .balls
+        .iter()
+        .flatten()
+        .map(|&ball| radii[ball])
+        .fold(world.tumbler_shape().bottom_radius, f64::min)
 }
 
 /// The step's contacts: the solver's, marked where this step's events say
@@ -596,11 +657,11 @@ impl SceneView {
                     if normal != Vec3::ZERO {
                         lines.dot(point, mark_size::IMPULSE_DOT, IMPULSE_COLOR);
                     }
-                    lines.arrow(point, normal, IMPULSE_COLOR);
+                    lines.arrow(point, normal, mark_size::VECTOR, IMPULSE_COLOR);
                     let friction = p.friction.length();
                     if friction > 0.0 {
                         let along = (p.friction / friction * length(friction)).as_vec3();
-                        lines.arrow(point, along, FRICTION_COLOR);
+                        lines.arrow(point, along, mark_size::VECTOR, FRICTION_COLOR);
                     }
                 }
                 if views.shows(DebugLayer::Contacts) {
@@ -610,10 +671,20 @@ impl SceneView {
                         mark_size::DOT
                     };
                     let color = s.state.tint(kind_color(p.kind));
-                    // The normal the contact pushes along, as Box2D draws it.
+                    // No larger than the ball it touches, seen from here;
+                    // the normal it pushes along as long again, as Box2D
+                    // draws it.
+                    let cap = 2.0 * contact_radius(world, p) as f32;
                     let towards = point + p.normal.as_vec3() * 0.1;
-                    lines.push(MarkShape::Spike, point, towards, mark_size::NORMAL, color);
-                    lines.dot(point, across, color);
+                    lines.push_capped(
+                        MarkShape::Spike,
+                        point,
+                        towards,
+                        mark_size::NORMAL,
+                        2.0 * cap,
+                        color,
+                    );
+                    lines.push_capped(MarkShape::Dot, point, point, across, cap, color);
                 }
             }
         }
@@ -627,12 +698,14 @@ impl SceneView {
                 lines.arrow(
                     centre,
                     balls.velocities()[i].as_vec3() * VELOCITY_SECONDS,
+                    mark_size::LINE,
                     velocity_color,
                 );
                 // The spin's axis, as long as the surface's speed would carry it.
                 lines.arrow(
                     centre,
                     balls.spins()[i].as_vec3() * r * VELOCITY_SECONDS,
+                    mark_size::LINE,
                     spin_color,
                 );
             }
@@ -641,20 +714,20 @@ impl SceneView {
                 lines.arrow(
                     com,
                     t.linear_velocity().as_vec3() * VELOCITY_SECONDS,
+                    mark_size::VECTOR,
                     velocity_color,
                 );
                 lines.arrow(
                     com,
                     t.angular_velocity().as_vec3() * 0.2 * VELOCITY_SECONDS,
+                    mark_size::VECTOR,
                     spin_color,
                 );
             }
         }
         if views.shows(DebugLayer::Grid) {
             let (cells, edge) = world.occupied_cells();
-            for c in cells {
-                lines.cube(c.as_vec3(), edge as f32, GRID_COLOR);
-            }
+            lines.boxes(&cells, edge, GRID_COLOR);
         }
         // The centre of mass lies inside the tumbler: drawn over it.
         if views.shows(DebugLayer::Com) {
@@ -673,7 +746,7 @@ impl SceneView {
                     mark_size::VECTOR,
                     LEVER_COLOR,
                 );
-                lines.arrow(com, below - com, WEIGHT_COLOR);
+                lines.arrow(com, below - com, mark_size::VECTOR, WEIGHT_COLOR);
                 lines.push(
                     MarkShape::Line,
                     below,
@@ -705,5 +778,68 @@ impl SceneView {
         }
         self.debug_marks = lines.marks;
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The segments `boxes` draws, as sorted pairs of corners.
+    fn edges(corners: &[DVec3], size: f64) -> Vec<([i64; 3], [i64; 3])> {
+        let mut marks = Marks::default();
+        marks.boxes(corners, size, Vec3::ONE);
+        let key = |p: [f32; 3]| p.map(|c| (f64::from(c) * 1000.0).round() as i64);
+        let mut out: Vec<_> = marks
+            .marks
+            .iter()
+            .map(|m| {
+                let (a, b) = (key(m.from), key(m.to));
+                (a.min(b), a.max(b))
+            })
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    #[test]
+    fn boxes_draw_each_shared_edge_once_where_the_cells_are() {
+        let origin = DVec3::new(-0.35, 0.05, 1.1);
+        let size = 0.25;
+        let at = |x: f64, y: f64, z: f64| origin + DVec3::new(x, y, z) * size;
+        // One box: its twelve edges.
+        assert_eq!(edges(&[at(0.0, 0.0, 0.0)], size).len(), 12);
+        // Two side by side share a face's four edges.
+        let pair = edges(&[at(0.0, 0.0, 0.0), at(1.0, 0.0, 0.0)], size);
+        assert_eq!(pair.len(), 20);
+        pair.windows(2).for_each(|w| assert_ne!(w[0], w[1]));
+        // A 2 x 2 x 2 block: 3 axes x 3 x 3 lines x 2 segments.
+        let mut block = Vec::new();
+        for k in 0..8 {
+            block.push(at(
+                f64::from(k & 1),
+                f64::from((k >> 1) & 1),
+                f64::from(k >> 2),
+            ));
+        }
+        assert_eq!(edges(&block, size).len(), 54);
+        // Every end is a corner of the lattice the cells stand on.
+        for (a, b) in edges(&block, size) {
+            for p in [a, b] {
+                let p = DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) / 1000.0;
+                let steps = (p - origin) / size;
+                assert!((steps - steps.round()).abs().max_element() < 1e-3, "{p}");
+            }
+        }
+    }
+
+    #[test]
+    fn impulse_lines_grow_by_a_radius_each_tenfold() {
+        let r = 0.1;
+        let at = |impulse: f64| impulse_length(impulse, 2.0, r, 1.0);
+        assert!((at(2.0) - REFERENCE_RADII * r).abs() < 1e-12);
+        assert!((at(20.0) - at(2.0) - RADII_PER_DECADE * r).abs() < 1e-12);
+        assert_eq!(at(0.0), 0.0);
+        assert_eq!(at(2.0 * 1e-4), 0.0);
     }
 }

@@ -16,6 +16,7 @@ struct Overlay {
     view_proj: [[f32; 4]; 4],
     camera: [f32; 4],
     sizes: [f32; 4],
+    lens: [f32; 4],
 }
 
 /// The pipeline, its uniform and the marks' instances.
@@ -56,7 +57,10 @@ impl DebugMarksPass {
                 compilation_options: Default::default(),
                 buffers: &[Some(DebugMark::layout())],
             },
-            primitive: Default::default(),
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleStrip,
+                ..Default::default()
+            },
             depth_stencil: None,
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
@@ -135,6 +139,13 @@ impl DebugMarksPass {
                 scene.0 as f32,
                 scene.1 as f32,
             ],
+            // A metre at distance w spans this over w pixels.
+            lens: [
+                0.5 * output.1 as f32 / (0.5 * camera.fov_y_deg.to_radians()).tan(),
+                0.0,
+                0.0,
+                0.0,
+            ],
         };
         gpu.queue
             .write_buffer(&self.overlay, 0, bytemuck::bytes_of(&overlay));
@@ -148,7 +159,7 @@ impl DebugMarksPass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, bind_group, &[]);
         pass.set_vertex_buffer(0, self.marks.buffer.slice(..));
-        pass.draw(0..6, self.marks.range());
+        pass.draw(0..4, self.marks.range());
         1
     }
 }
