@@ -30,7 +30,7 @@ pub fn placement_problem(
     if !room.contains_sphere(p, r, PLACEMENT_TOLERANCE) {
         let (lo, hi) = (room.min + DVec3::splat(r), room.max - DVec3::splat(r));
         return Some(format!(
-            "at {p} does not lie inside the room: with radius {r} its centre must lie              within {lo} ..= {hi}"
+            "at {p} does not lie inside the room: with radius {r} its centre must lie within {lo} ..= {hi}"
         ));
     }
     for j in 0..k {

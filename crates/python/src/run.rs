@@ -1,0 +1,202 @@
+//! A world as the program runs it: the physics and its particle effects
+//! (the program's `Simulation`), stepped as `rolypoly render` and
+//! `rolypoly simulate` step it, with the balls on the GPU engine where the
+//! world was made for it, and the events kept until Python asks for them.
+
+use std::borrow::Cow;
+
+use rolypoly::engine::Engine;
+use rolypoly::simulation::Simulation;
+use rolypoly_gpu::{Compute, GpuBalls, GpuError};
+use rolypoly_physics::{Balls, Event, World as PhysicsWorld};
+
+use crate::scene::Scene;
+
+/// Events kept for `World.events()` at most; later ones are counted, not
+/// kept, so that a world stepped for hours without being asked does not
+/// fill the memory.
+pub const MAX_PENDING_EVENTS: usize = 1_000_000;
+
+/// A world, its effects and its events since they were last taken.
+pub struct Run {
+    /// The physics and its particle effects.
+    pub sim: Simulation,
+    /// The scene it was made from (its light and quality draw its frames).
+    pub scene: Scene,
+    /// The seed it was made with.
+    pub seed: u64,
+    /// The balls, where the GPU engine steps them (the world then holds none).
+    pub gpu: Option<GpuBalls>,
+    /// The GPU engine's balls as the scene made them, before they moved to
+    /// the GPU: their sizes and masses in double precision, as the trace's
+    /// scene line gives them.
+    made: Option<Balls>,
+    /// The events since `World.events()` last took them, with the step
+    /// each happened in.
+    pub pending: Vec<(u64, Event)>,
+    /// Events not kept since then, past [`MAX_PENDING_EVENTS`].
+    pub dropped: u64,
+    /// The last step's events, kept so that steps allocate nothing.
+    step_events: Vec<Event>,
+}
+
+/// Why a world could not be made.
+pub enum MakeError {
+    /// The scene does not build (a placement the checks cannot see).
+    Build(String),
+    /// The GPU engine would not start.
+    Gpu(GpuError),
+}
+
+impl Run {
+    /// `scene`'s world from `seed`, its balls stepped by `engine`.
+    pub fn new(scene: Scene, seed: u64, engine: Engine) -> Result<Run, MakeError> {
+        let mut world = PhysicsWorld::new(scene.data.world.clone(), seed)
+            .map_err(|e| MakeError::Build(format!("cannot build {}: {e}", scene.name)))?;
+        let (gpu, made) = match engine {
+            Engine::Cpu => (None, None),
+            Engine::Gpu => {
+                let made = world.balls().clone();
+                let compute = Compute::headless().map_err(MakeError::Gpu)?;
+                let gpu = GpuBalls::on_compute(&compute, &mut world).map_err(MakeError::Gpu)?;
+                (Some(gpu), Some(made))
+            }
+        };
+        let sim = Simulation::new(world, scene.data.effects.clone(), seed);
+        Ok(Run {
+            sim,
+            scene,
+            seed,
+            gpu,
+            made,
+            pending: Vec::new(),
+            dropped: 0,
+            step_events: Vec::new(),
+        })
+    }
+
+    /// The engine that steps the balls.
+    pub fn engine(&self) -> Engine {
+        if self.gpu.is_some() {
+            Engine::Gpu
+        } else {
+            Engine::Cpu
+        }
+    }
+
+    /// One fixed step: the physics, then the effects its events set off,
+    /// as the program's `Simulation::tick` does it, keeping the events.
+    pub fn tick(&mut self) -> Result<(), GpuError> {
+        let sim = &mut self.sim;
+        sim.world.step();
+        sim.world.take_events(&mut self.step_events);
+        if let Some(balls) = &mut self.gpu {
+            balls.step(&mut sim.world)?;
+            balls.take_catches(&mut self.step_events);
+        }
+        sim.fx.consume(&self.step_events, &sim.world);
+        sim.fx
+            .update(sim.world.config().solver.dt, sim.world.fireball());
+        let step = sim.world.step_count();
+        self.keep_events(step);
+        Ok(())
+    }
+
+    /// The last step's events, kept for `World.events()` while there is room.
+    fn keep_events(&mut self, step: u64) {
+        let room = MAX_PENDING_EVENTS.saturating_sub(self.pending.len());
+        let kept = self.step_events.len().min(room);
+        self.pending
+            .extend(self.step_events[..kept].iter().map(|e| (step, *e)));
+        self.dropped += (self.step_events.len() - kept) as u64;
+    }
+
+    /// The last step's events (what the trace writes for it).
+    pub fn last_events(&self) -> &[Event] {
+        &self.step_events
+    }
+
+    /// The balls now: the world's own, or read back from the GPU.
+    pub fn balls(&self) -> Result<Cow<'_, Balls>, GpuError> {
+        match &self.gpu {
+            None => Ok(Cow::Borrowed(self.sim.world.balls())),
+            Some(gpu) => Ok(Cow::Owned(gpu.read()?.to_balls())),
+        }
+    }
+
+    /// The balls for the trace's scene line: on the GPU engine, their
+    /// sizes and masses as the scene made them (thrown ones as read back),
+    /// as `rolypoly simulate` writes them.
+    pub fn scene_balls(&self) -> Result<Option<Balls>, GpuError> {
+        let (Some(gpu), Some(made)) = (&self.gpu, &self.made) else {
+            return Ok(None);
+        };
+        let now = gpu.read()?.to_balls();
+        let exact = |made: &[f64], now: &[f64]| -> Vec<f64> {
+            made.iter()
+                .chain(now.iter().skip(made.len()))
+                .copied()
+                .collect()
+        };
+        Ok(Some(Balls::from_parts(
+            now.positions().to_vec(),
+            now.velocities().to_vec(),
+            now.spins().to_vec(),
+            exact(made.radii(), now.radii()),
+            exact(made.masses(), now.masses()),
+            now.tints().to_vec(),
+            now.alive().to_vec(),
+        )))
+    }
+
+    /// `report` on the world with every ball in it: on the GPU engine its
+    /// balls are read back and put into the world for the while, as
+    /// `rolypoly simulate` does for its trace.
+    pub fn with_balls<T>(
+        &mut self,
+        report: impl FnOnce(&PhysicsWorld) -> T,
+    ) -> Result<T, GpuError> {
+        let world = &mut self.sim.world;
+        let Some(gpu) = &self.gpu else {
+            return Ok(report(world));
+        };
+        world.put_balls(gpu.read()?.to_balls());
+        let out = report(world);
+        world.take_balls();
+        Ok(out)
+    }
+}
+
+/// What `World.snapshot()` keeps: everything a world steps on from, so that
+/// a world restored from it steps on to the same bits.
+#[derive(Clone)]
+pub struct Saved {
+    pub sim: Simulation,
+    pub scene: Scene,
+    pub seed: u64,
+    pub pending: Vec<(u64, Event)>,
+    pub dropped: u64,
+}
+
+impl Run {
+    /// A copy of the state (the CPU engine's only: the GPU engine's balls
+    /// cannot be put back).
+    pub fn save(&self) -> Option<Saved> {
+        self.gpu.is_none().then(|| Saved {
+            sim: self.sim.clone(),
+            scene: self.scene.clone(),
+            seed: self.seed,
+            pending: self.pending.clone(),
+            dropped: self.dropped,
+        })
+    }
+
+    /// Back to `saved`; the CPU engine only, as [`Run::save`].
+    pub fn restore(&mut self, saved: &Saved) {
+        self.sim = saved.sim.clone();
+        self.scene = saved.scene.clone();
+        self.seed = saved.seed;
+        self.pending.clone_from(&saved.pending);
+        self.dropped = saved.dropped;
+    }
+}
