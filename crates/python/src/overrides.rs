@@ -16,7 +16,7 @@ use std::ops::Range;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use rolypoly::scene::{BUILTIN_ORIGIN, Location, Scene, SceneError, parse_scene};
+use rolypoly::scene::{BUILTIN_ORIGIN, Location, Scene, SceneError, line_of, parse_scene};
 use toml::de::{DeTable, DeValue};
 use toml::{Table, Value};
 
@@ -304,16 +304,6 @@ fn insert_at(table: &mut Table, key: &str, value: Value) -> Result<(), String> {
     }
     here.insert(leaf.to_owned(), value);
     Ok(())
-}
-
-/// 1-based line of a byte offset.
-fn line_of(source: &str, offset: usize) -> usize {
-    let end = offset.min(source.len());
-    source.as_bytes()[..end]
-        .iter()
-        .filter(|&&b| b == b'\n')
-        .count()
-        + 1
 }
 
 /// Where a key of a file is written: its line, and for a key of one

@@ -221,8 +221,9 @@ fn build(source: Option<&str>, origin: &str, overrides: &Overrides) -> Result<Sc
     Ok(scene)
 }
 
-/// 1-based line of a byte offset.
-fn line_of(source: &str, offset: usize) -> usize {
+/// The 1-based line of a byte offset in a scene file's `source`, as its
+/// errors name it.
+pub fn line_of(source: &str, offset: usize) -> usize {
     let end = offset.min(source.len());
     source.as_bytes()[..end]
         .iter()
