@@ -62,11 +62,18 @@ impl Sizes {
 impl Buffers {
     pub fn new(device: &wgpu::Device, sizes: &Sizes) -> Buffers {
         use wgpu::BufferUsages as U;
+        // Every storage buffer can be copied whole, both ways, so that a
+        // snapshot keeps every bit the next step reads.
         let make = |label: &str, size: u64, usage: U| {
+            let copies = if usage.contains(U::STORAGE) {
+                U::COPY_SRC | U::COPY_DST
+            } else {
+                U::empty()
+            };
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: size.max(16),
-                usage,
+                usage: usage | copies,
                 mapped_at_creation: false,
             })
         };
@@ -160,6 +167,12 @@ impl Buffers {
             &self.near_speed,
             &self.slot_mirror,
         ]
+    }
+
+    /// Every buffer but the step's constants (which the CPU writes before
+    /// each step): what a snapshot copies.
+    pub fn stored(&self) -> impl Iterator<Item = &wgpu::Buffer> {
+        self.in_order().into_iter().skip(1)
     }
 
     /// The layout: binding 0 the uniform, 17 and 18 read-only, the rest

@@ -14,6 +14,9 @@ use crate::wait::WaitBound;
 use glam::{DVec3, Vec3};
 use rolypoly_physics::{Balls, Event, EventKind, Tint, World};
 
+mod snapshot;
+pub use snapshot::GpuSnapshot;
+
 /// Thrown balls a run can add on top of its scene's.
 pub const THROW_ROOM: u64 = 1024;
 /// Impact rounds (see `impacts.wgsl`): a ball struck in one round strikes
@@ -393,6 +396,29 @@ impl GpuBalls {
         q.write_buffer(&self.buffers.state, 4 * first, bytemuck::cast_slice(&state));
     }
 
+    /// Moves ball `ball` to `position` at `velocity`, keeping its spin,
+    /// size, colour and contacts (the caller checks it fits there).
+    pub fn set_ball(
+        &mut self,
+        ball: usize,
+        position: DVec3,
+        velocity: DVec3,
+    ) -> Result<(), GpuError> {
+        if ball >= self.len() {
+            return Err(GpuError::Unsupported(format!(
+                "there is no ball {ball}: the world has {}",
+                self.len()
+            )));
+        }
+        let xyz = |v: DVec3| v.as_vec3().to_array();
+        let at = 16 * ball as u64;
+        let q = &self.queue;
+        q.write_buffer(&self.buffers.pos, at, bytemuck::cast_slice(&xyz(position)));
+        q.write_buffer(&self.buffers.vel, at, bytemuck::cast_slice(&xyz(velocity)));
+        self.write_instances();
+        Ok(())
+    }
+
     /// Puts the balls back as the scene starts them (I): `world` draws them
     /// afresh (see [`World::fresh_balls`]).
     pub fn restart(&mut self, world: &mut World) -> Result<(), GpuError> {
@@ -734,6 +760,29 @@ impl GpuBalls {
         Ok(())
     }
 
+    /// The first `size` bytes of `buffer` (COPY_SRC), copied back once the
+    /// GPU is done with what was submitted before; `what` names the wait.
+    fn copy_back(
+        &self,
+        buffer: &wgpu::Buffer,
+        size: u64,
+        what: impl FnOnce() -> String,
+    ) -> Result<Vec<u8>, GpuError> {
+        let size = size.min(buffer.size());
+        // Buffers are at least 16 bytes; so is what is copied.
+        let copied = size.max(16).min(buffer.size());
+        let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("read back"),
+            size: copied,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = self.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, copied);
+        self.queue.submit([encoder.finish()]);
+        read_buffer(&self.device, &self.wait, &staging, size as usize, what)
+    }
+
     /// The balls the fireball caught since the last call, as events.
     pub fn take_catches(&mut self, into: &mut Vec<Event>) {
         into.append(&mut self.catches);
@@ -743,17 +792,8 @@ impl GpuBalls {
     /// the window never needs to).
     pub fn read(&self) -> Result<BallState, GpuError> {
         let n = u64::from(self.params.count);
-        let copy = |buffer: &wgpu::Buffer, size: u64| -> Result<Vec<u8>, GpuError> {
-            let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("read back"),
-                size: size.max(16),
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let mut encoder = self.device.create_command_encoder(&Default::default());
-            encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size.max(16).min(buffer.size()));
-            self.queue.submit([encoder.finish()]);
-            read_buffer(&self.device, &self.wait, &staging, size as usize, || {
+        let copy = |buffer: &wgpu::Buffer, size: u64| {
+            self.copy_back(buffer, size, || {
                 format!(
                     "reading the gpu engine's balls back after step {}",
                     self.steps

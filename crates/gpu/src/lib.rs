@@ -45,7 +45,7 @@ mod scan;
 mod wait;
 
 pub use device::{Compute, best_adapter, check_compute, describe, limits};
-pub use engine::{BallState, GpuBalls, THROW_ROOM};
+pub use engine::{BallState, GpuBalls, GpuSnapshot, THROW_ROOM};
 pub use error::GpuError;
 pub use profile::{STAGES, Stage};
 pub use wait::{

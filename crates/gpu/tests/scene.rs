@@ -42,6 +42,92 @@ fn a_rerun_repeats_every_bit() {
     assert_ne!(first.0, run(4).0, "another seed, another run");
 }
 
+#[test]
+fn a_snapshot_put_back_steps_on_to_the_same_bits() {
+    let compute = compute();
+    for (count, seed) in [(400, 1), (2500, 7)] {
+        let (mut world, mut balls) = build(&compute, crowded_default(count), seed);
+        for _ in 0..60 {
+            step(&mut world, &mut balls);
+        }
+        let (saved_world, saved) = (world.clone(), balls.snapshot().expect("a snapshot"));
+        let run_on = |world: &mut rolypoly_physics::World, balls: &mut rolypoly_gpu::GpuBalls| {
+            for _ in 0..90 {
+                step(world, balls);
+            }
+            (bits(&balls.read().unwrap()), balls.steps())
+        };
+        let first = run_on(&mut world, &mut balls);
+        // Back in the same engine, and in a fresh one of the same scene.
+        world = saved_world.clone();
+        balls
+            .restore(&saved)
+            .expect("the same engine takes it back");
+        assert_eq!(
+            first,
+            run_on(&mut world, &mut balls),
+            "{count} balls, seed {seed}"
+        );
+        let (_, mut fresh) = build(&compute, crowded_default(count), seed);
+        let mut world = saved_world.clone();
+        fresh
+            .restore(&saved)
+            .expect("an engine of the same scene takes it");
+        assert_eq!(
+            first,
+            run_on(&mut world, &mut fresh),
+            "{count} balls, seed {seed}, fresh"
+        );
+        // Another scene's engine refuses it and keeps its own balls.
+        let (_, mut other) = build(&compute, crowded_default(count + 1), seed);
+        let before = bits(&other.read().unwrap());
+        assert!(other.restore(&saved).is_err());
+        assert_eq!(before, bits(&other.read().unwrap()));
+    }
+}
+
+#[test]
+fn a_ball_set_on_the_gpu_moves_from_there() {
+    let compute = compute();
+    for seed in [1, 2] {
+        let (mut world, mut balls) = build(&compute, empty_room(DVec3::splat(3.0), 50), seed);
+        // Somewhere clear of every other ball and the walls.
+        let start = balls.read().unwrap();
+        let clear = |p: DVec3| {
+            (0..start.positions.len())
+                .filter(|&i| i != 7)
+                .all(|i| (start.positions[i].as_dvec3() - p).length() > 0.4)
+        };
+        let at = (0..1000)
+            .map(|k| {
+                DVec3::new(
+                    -1.0 + 0.1 * f64::from(k % 10),
+                    0.5 + 0.2 * f64::from(k / 100),
+                    -1.0 + 0.2 * f64::from((k / 10) % 10),
+                )
+            })
+            .find(|&p| clear(p))
+            .expect("a clear place in a room of 50 balls");
+        let towards = DVec3::new(1.0, 0.0, 0.0);
+        balls.set_ball(7, at, towards).expect("ball 7 exists");
+        let state = balls.read().unwrap();
+        assert_eq!(state.positions[7].as_dvec3(), at.as_vec3().as_dvec3());
+        assert_eq!(state.velocities[7].as_dvec3(), towards);
+        let radius = state.radii[7];
+        step(&mut world, &mut balls);
+        let after = balls.read().unwrap();
+        // Flying freely: a step's travel along x, falling under gravity.
+        let dt = world.config().solver.dt;
+        assert!((f64::from(after.positions[7].x) - (at.x + dt)).abs() < 1e-5);
+        assert!(f64::from(after.positions[7].y) < at.y);
+        assert_eq!(after.radii[7], radius, "its size stays");
+        assert!(
+            balls.set_ball(50, at, towards).is_err(),
+            "there is no ball 50"
+        );
+    }
+}
+
 /// The largest change of velocity between two states of the same balls.
 fn largest_difference(a: &rolypoly_gpu::BallState, b: &rolypoly_gpu::BallState) -> f32 {
     a.velocities

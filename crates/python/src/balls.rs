@@ -3,14 +3,15 @@
 
 use std::borrow::Cow;
 
+use glam::DVec3;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 use rolypoly::trace::tint_name;
-use rolypoly_physics::Balls as PhysicsBalls;
+use rolypoly_physics::{Balls as PhysicsBalls, World as PhysicsWorld};
 
 use crate::arrays::{column, read_vectors, rows3, vectors};
 use crate::checks::{changed, check_positions, check_velocities};
-use crate::errors::{gpu_error, not_on_gpu, value_error};
+use crate::errors::{gpu_error, value_error};
 use crate::world::World;
 
 /// The balls of a :class:`World`, one row per ball, thrown balls and balls
@@ -44,6 +45,87 @@ impl Balls {
     }
 }
 
+/// Which of the balls' vectors a setter writes.
+#[derive(Clone, Copy)]
+enum Written {
+    Positions,
+    Velocities,
+}
+
+impl Written {
+    /// The attribute, as messages name it.
+    fn name(self) -> &'static str {
+        match self {
+            Written::Positions => "balls.positions",
+            Written::Velocities => "balls.velocities",
+        }
+    }
+
+    /// The vectors it writes, as they are now.
+    fn now(self, balls: &PhysicsBalls) -> &[DVec3] {
+        match self {
+            Written::Positions => balls.positions(),
+            Written::Velocities => balls.velocities(),
+        }
+    }
+
+    /// Whether `new` may be written to the balls in `moved`.
+    fn check(self, world: &PhysicsWorld, new: &[DVec3], moved: &[usize]) -> Result<(), String> {
+        match self {
+            Written::Positions => check_positions(world, new, moved),
+            Written::Velocities => check_velocities(world, new, moved),
+        }
+    }
+
+    /// Ball `i`'s position and velocity once `new` is written.
+    fn apply(self, balls: &PhysicsBalls, i: usize, new: DVec3) -> (DVec3, DVec3) {
+        match self {
+            Written::Positions => (new, balls.velocities()[i]),
+            Written::Velocities => (balls.positions()[i], new),
+        }
+    }
+}
+
+impl Balls {
+    /// Writes `value` as the balls' `written` vectors: the rows that change
+    /// are checked, then written (on the GPU engine, put on the GPU), or
+    /// none is.
+    fn write(&self, py: Python<'_>, value: &Bound<'_, PyAny>, written: Written) -> PyResult<()> {
+        let mut world = self.world.try_borrow_mut(py)?;
+        let run = &mut world.run;
+        let Some(gpu) = &mut run.gpu else {
+            let physics = &mut run.sim.world;
+            let new = read_vectors(value, written.name(), physics.balls().len())?;
+            let moved = changed(written.now(physics.balls()), &new);
+            written.check(physics, &new, &moved).map_err(value_error)?;
+            let balls = physics.balls_mut();
+            for i in moved {
+                let (position, velocity) = written.apply(balls, i, new[i]);
+                let spin = balls.spins()[i];
+                balls.set(i, position, velocity);
+                balls.set_spin(i, spin);
+            }
+            return Ok(());
+        };
+        // The GPU engine's balls are read back and put in the world while
+        // they are checked, as `rolypoly simulate` puts them for its trace.
+        let balls = gpu.read().map_err(|e| gpu_error(&e))?.to_balls();
+        let new = read_vectors(value, written.name(), balls.len())?;
+        let moved = changed(written.now(&balls), &new);
+        let physics = &mut run.sim.world;
+        physics.put_balls(balls);
+        let checked = written.check(physics, &new, &moved);
+        let balls = physics.take_balls();
+        checked.map_err(value_error)?;
+        for i in moved {
+            let (position, velocity) = written.apply(&balls, i, new[i]);
+            gpu.set_ball(i, position, velocity)
+                .map_err(|e| gpu_error(&e))?;
+        }
+        Ok(())
+    }
+}
+
 #[pymethods]
 impl Balls {
     /// Centres, shape (N, 3), float64, metres; the floor is y = 0.
@@ -54,22 +136,7 @@ impl Balls {
 
     #[setter]
     fn set_positions(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let mut world = self.world.try_borrow_mut(py)?;
-        let run = &mut world.run;
-        if run.gpu.is_some() {
-            return Err(not_on_gpu("setting ball positions"));
-        }
-        let physics = &mut run.sim.world;
-        let new = read_vectors(value, "balls.positions", physics.balls().len())?;
-        let moved = changed(physics.balls().positions(), &new);
-        check_positions(physics, &new, &moved).map_err(value_error)?;
-        let balls = physics.balls_mut();
-        for i in moved {
-            let (velocity, spin) = (balls.velocities()[i], balls.spins()[i]);
-            balls.set(i, new[i], velocity);
-            balls.set_spin(i, spin);
-        }
-        Ok(())
+        self.write(py, value, Written::Positions)
     }
 
     /// Velocities, shape (N, 3), float64, m/s.
@@ -80,22 +147,7 @@ impl Balls {
 
     #[setter]
     fn set_velocities(&self, py: Python<'_>, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let mut world = self.world.try_borrow_mut(py)?;
-        let run = &mut world.run;
-        if run.gpu.is_some() {
-            return Err(not_on_gpu("setting ball velocities"));
-        }
-        let physics = &mut run.sim.world;
-        let new = read_vectors(value, "balls.velocities", physics.balls().len())?;
-        let moved = changed(physics.balls().velocities(), &new);
-        check_velocities(physics, &new, &moved).map_err(value_error)?;
-        let balls = physics.balls_mut();
-        for i in moved {
-            let (position, spin) = (balls.positions()[i], balls.spins()[i]);
-            balls.set(i, position, new[i]);
-            balls.set_spin(i, spin);
-        }
-        Ok(())
+        self.write(py, value, Written::Velocities)
     }
 
     /// Angular velocities, shape (N, 3), float64, rad/s.

@@ -7,8 +7,8 @@ use std::error::Error;
 use std::io;
 
 use pyo3::exceptions::{
-    PyFileNotFoundError, PyIsADirectoryError, PyNotImplementedError, PyOSError, PyPermissionError,
-    PyRuntimeError, PyValueError,
+    PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyPermissionError, PyRuntimeError,
+    PyValueError,
 };
 use pyo3::prelude::*;
 use rolypoly::scene::SceneError;
@@ -69,14 +69,6 @@ pub fn gpu_error(error: &GpuError) -> PyErr {
 /// Drawing failed: the adapter's trouble.
 pub fn device_error(error: &anyhow::Error) -> PyErr {
     DeviceError::new_err(format!("{error:#}"))
-}
-
-/// What the GPU engine cannot do from Python, named.
-pub fn not_on_gpu(what: &str) -> PyErr {
-    PyNotImplementedError::new_err(format!(
-        "{what} needs the CPU engine: the GPU engine takes no ball state from Python \
-         (make the world with engine=\"cpu\")"
-    ))
 }
 
 /// A bad argument, in one line.

@@ -7,7 +7,7 @@ use std::borrow::Cow;
 
 use rolypoly::engine::Engine;
 use rolypoly::simulation::Simulation;
-use rolypoly_gpu::{Compute, GpuBalls, GpuError};
+use rolypoly_gpu::{Compute, GpuBalls, GpuError, GpuSnapshot};
 use rolypoly_physics::{Balls, Event, World as PhysicsWorld};
 
 use crate::scene::Scene;
@@ -176,27 +176,52 @@ pub struct Saved {
     pub seed: u64,
     pub pending: Vec<(u64, Event)>,
     pub dropped: u64,
+    /// On the GPU engine, its state copied back, and its balls as the
+    /// scene made them.
+    gpu: Option<(GpuSnapshot, Option<Balls>)>,
 }
 
 impl Run {
-    /// A copy of the state (the CPU engine's only: the GPU engine's balls
-    /// cannot be put back).
-    pub fn save(&self) -> Option<Saved> {
-        self.gpu.is_none().then(|| Saved {
+    /// A copy of the state, the GPU engine's copied back.
+    pub fn save(&self) -> Result<Saved, GpuError> {
+        let gpu = match &self.gpu {
+            None => None,
+            Some(gpu) => Some((gpu.snapshot()?, self.made.clone())),
+        };
+        Ok(Saved {
             sim: self.sim.clone(),
             scene: self.scene.clone(),
             seed: self.seed,
             pending: self.pending.clone(),
             dropped: self.dropped,
+            gpu,
         })
     }
 
-    /// Back to `saved`; the CPU engine only, as [`Run::save`].
-    pub fn restore(&mut self, saved: &Saved) {
+    /// Back to `saved`, taken on the same engine (on the GPU engine, of a
+    /// world of the same scene); else refused, the world unchanged.
+    pub fn restore(&mut self, saved: &Saved) -> Result<(), GpuError> {
+        match (&mut self.gpu, &saved.gpu) {
+            (None, None) => {}
+            (Some(gpu), Some((snapshot, made))) => {
+                gpu.restore(snapshot)?;
+                self.made.clone_from(made);
+            }
+            (ours, _) => {
+                let engine = |gpu: bool| if gpu { "gpu" } else { "cpu" };
+                return Err(GpuError::Unsupported(format!(
+                    "a snapshot of a world on the {} engine cannot be put back into a world on \
+                     the {} engine",
+                    engine(saved.gpu.is_some()),
+                    engine(ours.is_some())
+                )));
+            }
+        }
         self.sim = saved.sim.clone();
         self.scene = saved.scene.clone();
         self.seed = saved.seed;
         self.pending.clone_from(&saved.pending);
         self.dropped = saved.dropped;
+        Ok(())
     }
 }

@@ -268,6 +268,65 @@ def test_a_snapshot_rewinds_bit_for_bit():
     assert other.seed == 8 and other.scene == w.scene
 
 
+@pytest.mark.parametrize("count, seed", [(300, 3), (1200, 4)])
+def test_a_snapshot_on_the_gpu_engine_rewinds_bit_for_bit(count, seed):
+    scene = rolypoly.Scene.default({"balls.count": count})
+    w = rolypoly.World(scene, seed=seed, engine="gpu")
+    w.launch_fireball()
+    w.step(60)
+    snap = w.snapshot()
+    w.step(90)
+    first = (w.balls.positions, w.balls.velocities, w.balls.alive, w.tumblers.orientations)
+    w.restore(snap)
+    assert w.steps == 60
+    w.step(90)
+    again = (w.balls.positions, w.balls.velocities, w.balls.alive, w.tumblers.orientations)
+    for a, b in zip(first, again):
+        assert a.tobytes() == b.tobytes()
+    # Another world of the same scene takes it; another scene's refuses it.
+    other = rolypoly.World(scene, seed=seed + 1, engine="gpu")
+    other.restore(snap)
+    other.step(90)
+    assert other.balls.positions.tobytes() == first[0].tobytes()
+    larger = rolypoly.World(rolypoly.Scene.default({"balls.count": count + 1}), seed=seed, engine="gpu")
+    with pytest.raises(ValueError, match="another scene"):
+        larger.restore(snap)
+    assert larger.steps == 0
+
+
+def test_a_snapshot_goes_back_only_to_its_own_engine():
+    scene = rolypoly.Scene.default({"balls.count": 100})
+    cpu, gpu = (rolypoly.World(scene, seed=1, engine=e) for e in ("cpu", "gpu"))
+    with pytest.raises(ValueError, match="on the gpu engine cannot be put back into a world on the cpu engine"):
+        cpu.restore(gpu.snapshot())
+    with pytest.raises(ValueError, match="on the cpu engine cannot be put back into a world on the gpu engine"):
+        gpu.restore(cpu.snapshot())
+
+
+def test_the_gpu_engine_takes_checked_positions_and_velocities():
+    w = rolypoly.World(rolypoly.Scene.default({"balls.count": 200}), seed=2, engine="gpu")
+    w.step(30)
+    p, v = w.balls.positions, w.balls.velocities
+    # Somewhere high and clear of every ball.
+    p[9] = [0.0, 3.5, 0.0]
+    assert np.linalg.norm(np.delete(p, 9, axis=0) - p[9], axis=1).min() > 0.5
+    v[9] = [1.5, 0.0, 0.0]
+    w.balls.positions, w.balls.velocities = p, v
+    # Held in single precision on the GPU.
+    assert np.allclose(w.balls.positions[9], p[9], atol=1e-6)
+    assert np.allclose(w.balls.velocities[9], v[9], atol=1e-6)
+    w.step(1)
+    assert w.balls.positions[9][0] == pytest.approx(1.5 * w.dt, abs=1e-5), "it flies from there"
+    refused(w, "positions", np.where(np.arange(200)[:, None] == 4, [0.0, 9.0, 0.0], w.balls.positions),
+            "ball 4", "inside the room")
+    p = w.balls.positions
+    p[3] = p[9] + [0.05, 0.0, 0.0]
+    refused(w, "positions", p, "ball 3", "overlaps ball 9")
+    v = w.balls.velocities
+    v[2] = [np.nan, 0.0, 0.0]
+    refused(w, "velocities", v, "ball 2")
+
+
 def test_the_gil_is_released_while_stepping():
     # Fewer balls than the physics spreads over threads: the step keeps one
     # core, this thread the other.
