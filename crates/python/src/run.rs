@@ -36,8 +36,6 @@ pub struct Run {
     pub pending: Vec<(u64, Event)>,
     /// Events not kept since then, past [`MAX_PENDING_EVENTS`].
     pub dropped: u64,
-    /// The last step's events, kept so that steps allocate nothing.
-    step_events: Vec<Event>,
 }
 
 /// Why a world could not be made.
@@ -71,7 +69,6 @@ impl Run {
             made,
             pending: Vec::new(),
             dropped: 0,
-            step_events: Vec::new(),
         })
     }
 
@@ -84,36 +81,28 @@ impl Run {
         }
     }
 
-    /// One fixed step: the physics, then the effects its events set off,
-    /// as the program's `Simulation::tick` does it, keeping the events.
+    /// One fixed step, as the program's `Simulation::tick` takes it,
+    /// keeping the events.
     pub fn tick(&mut self) -> Result<(), GpuError> {
-        let sim = &mut self.sim;
-        sim.world.step();
-        sim.world.take_events(&mut self.step_events);
-        if let Some(balls) = &mut self.gpu {
-            balls.step(&mut sim.world)?;
-            balls.take_catches(&mut self.step_events);
-        }
-        sim.fx.consume(&self.step_events, &sim.world);
-        sim.fx
-            .update(sim.world.config().solver.dt, sim.world.fireball());
-        let step = sim.world.step_count();
-        self.keep_events(step);
+        self.sim.tick_with(self.gpu.as_mut())?;
+        self.keep_events();
         Ok(())
     }
 
     /// The last step's events, kept for `World.events()` while there is room.
-    fn keep_events(&mut self, step: u64) {
+    fn keep_events(&mut self) {
+        let step = self.sim.world.step_count();
+        let events = self.sim.last_events();
         let room = MAX_PENDING_EVENTS.saturating_sub(self.pending.len());
-        let kept = self.step_events.len().min(room);
+        let kept = events.len().min(room);
         self.pending
-            .extend(self.step_events[..kept].iter().map(|e| (step, *e)));
-        self.dropped += (self.step_events.len() - kept) as u64;
+            .extend(events[..kept].iter().map(|e| (step, *e)));
+        self.dropped += (events.len() - kept) as u64;
     }
 
     /// The last step's events (what the trace writes for it).
     pub fn last_events(&self) -> &[Event] {
-        &self.step_events
+        self.sim.last_events()
     }
 
     /// The balls now: the world's own, or read back from the GPU.

@@ -33,6 +33,9 @@ CASES = [
     (None, {"balls.count": 200}, ["--balls", "200"], 3, 0.4, (128, 96),
      {"show": ["velocities", "com", "rest"], "quality": "medium"},
      ["--show", "velocities,com,rest", "--quality", "medium"]),
+    # The impacts of the last step marked, as the program marks them.
+    (None, {"balls.count": 300}, ["--balls", "300"], 6, 1.0, (200, 112),
+     {"show": "contacts,impulses"}, ["--show", "contacts,impulses"]),
 ]
 
 
@@ -56,6 +59,16 @@ def test_a_frame_with_the_fireball_flying(tmp_path):
     assert np.array_equal(ours, theirs)
     # Not the same frame as without it: the comparison above sees the fireball.
     assert not np.array_equal(ours, python_frame(None, 4, 0.3, (160, 90)))
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_the_last_steps_impacts_are_marked(seed):
+    world = rolypoly.World(seed=seed)
+    world.step(world.steps_for(1.0))
+    plain = rolypoly.render(world, size=(320, 180)).astype(int)
+    marked = rolypoly.render(world, size=(320, 180), show=["contacts", "impulses"]).astype(int)
+    changed = (np.abs(marked - plain)[..., :3].max(axis=2) > 16).mean()
+    assert changed > 0.005, f"{changed:.2%} of the pixels marked"
 
 
 def test_frames_drawn_again_are_the_same_and_follow_the_world():

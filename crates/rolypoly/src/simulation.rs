@@ -111,7 +111,23 @@ impl Simulation {
     }
 
     /// One fixed step: the physics, then the effects its events set off.
+    /// A GPU engine that fails stops stepping the balls, and says why in
+    /// [`Simulation::check_gpu`].
     pub fn tick(&mut self) {
+        let gpu = self.gpu.clone();
+        let mut held = gpu
+            .as_ref()
+            .map(|gpu| gpu.lock().unwrap_or_else(PoisonError::into_inner));
+        let balls = held.as_deref_mut().filter(|_| self.gpu_failure.is_none());
+        if let Err(e) = self.tick_with(balls) {
+            self.gpu_failure = Some(e.to_string());
+        }
+    }
+
+    /// One fixed step with the balls on `gpu` where one is given (an
+    /// engine the caller keeps, as the Python package does; the world
+    /// then holds no balls): the world, the balls, the effects.
+    pub fn tick_with(&mut self, gpu: Option<&mut GpuBalls>) -> Result<(), GpuError> {
         self.world.step();
         let (sum, steps) = &mut self.step_times;
         let last = self.world.step_times();
@@ -123,18 +139,24 @@ impl Simulation {
         sum.impacts += last.impacts;
         *steps += 1;
         self.world.take_events(&mut self.events);
-        if let Some(gpu) = &self.gpu {
-            let mut balls = gpu.lock().unwrap_or_else(PoisonError::into_inner);
-            if self.gpu_failure.is_none()
-                && let Err(e) = balls.step(&mut self.world)
-            {
-                self.gpu_failure = Some(e.to_string());
+        let stepped = match gpu {
+            Some(balls) => {
+                let stepped = balls.step(&mut self.world);
+                balls.take_catches(&mut self.events);
+                stepped
             }
-            balls.take_catches(&mut self.events);
-        }
+            None => Ok(()),
+        };
         self.fx.consume(&self.events, &self.world);
         self.fx
             .update(self.world.config().solver.dt, self.world.fireball());
+        stepped
+    }
+
+    /// The last tick's events: the world's, then the balls the GPU engine's
+    /// fireball caught.
+    pub fn last_events(&self) -> &[Event] {
+        &self.events
     }
 
     /// The steps' stage times since the last call, summed (the counts of
