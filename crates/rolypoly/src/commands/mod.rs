@@ -36,13 +36,13 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
         None => format!("the {BUILTIN_ORIGIN}"),
     };
     let seed = scene_args.seed;
-    let mut world = World::new(scene.world.clone(), seed)
+    let world = World::new(scene.world.clone(), seed)
         .with_context(|| format!("cannot build {scene_name}"))?;
     let gpu = scene.engine == Engine::Gpu;
     match &cli.command {
         None => run::window(world, scene, path, seed, &cli.window),
         Some(Command::Simulate(args)) => simulate::simulate(
-            &mut world,
+            Simulation::new(world, scene.effects, seed),
             &scene_name,
             args,
             seed,

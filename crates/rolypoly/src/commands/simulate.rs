@@ -1,5 +1,5 @@
-//! `rolypoly simulate` (SPEC A3): step a world a fixed number of steps
-//! without a window, optionally writing a trace, and summarise the result.
+//! `rolypoly simulate` (SPEC A3): step a world (and its effects, as every
+//! run steps them) a fixed number of steps without a window, optionally writing a trace, and summarise the result.
 
 use std::fmt;
 use std::io::{self, Write};
@@ -10,13 +10,14 @@ use rolypoly_gpu::{Compute, GpuBalls};
 use rolypoly_physics::{EventKind, World};
 
 use crate::cli::{SimulateArgs, steps_for};
+use crate::simulation::Simulation;
 use crate::trace::{self, TraceWriter, event_kind_name};
 
-/// `rolypoly simulate` on `world`: its steps, a trace if asked for, and
+/// `rolypoly simulate` on `sim`: its steps, a trace if asked for, and
 /// the summary. With `gpu`, its balls are stepped by the GPU engine on the
 /// best adapter there is.
 pub fn simulate(
-    world: &mut World,
+    mut sim: Simulation,
     scene_name: &str,
     args: &SimulateArgs,
     seed: u64,
@@ -28,11 +29,11 @@ pub fn simulate(
     // them in single precision.
     let mut writer = args.trace.as_deref().map(trace::create).transpose()?;
     if let Some(writer) = writer.as_mut() {
-        writer.scene(world, seed)?;
+        writer.scene(&sim.world, seed)?;
     }
     let mut balls = if gpu {
         let compute = Compute::headless()?;
-        Some(GpuBalls::on_compute(&compute, world)?)
+        Some(GpuBalls::on_compute(&compute, &mut sim.world)?)
     } else {
         None
     };
@@ -51,7 +52,7 @@ pub fn simulate(
     match (&args.trace, writer) {
         (Some(path), Some(mut writer)) => {
             let summary = run(
-                world,
+                &mut sim,
                 balls.as_mut(),
                 scene_name,
                 &options,
@@ -66,7 +67,7 @@ pub fn simulate(
             }
         }
         _ => {
-            let summary = run::<io::Sink>(world, balls.as_mut(), scene_name, &options, None)?;
+            let summary = run::<io::Sink>(&mut sim, balls.as_mut(), scene_name, &options, None)?;
             print_summary(&summary)
         }
     }
@@ -138,12 +139,13 @@ fn event_index(kind: &EventKind) -> usize {
     EVENT_KINDS.iter().position(|&k| k == name).unwrap_or(0)
 }
 
-/// Runs `options.steps` steps of `world`. With a trace (whose scene line is
-/// written), writes the state at step 0, then every `options.every` steps
-/// and at the last step, each state line carrying the events since the
-/// previous one.
+/// Runs `options.steps` steps of `sim`, as every run steps it (the world,
+/// the balls on `gpu` where given, the effects). With a trace (whose scene
+/// line is written), writes the state at step 0, then every
+/// `options.every` steps and at the last step, each state line carrying
+/// the events since the previous one.
 pub fn run<W: Write>(
-    world: &mut World,
+    sim: &mut Simulation,
     mut gpu: Option<&mut GpuBalls>,
     scene: &str,
     options: &Options,
@@ -152,28 +154,28 @@ pub fn run<W: Write>(
     let started = Instant::now();
     let every = options.every.max(1);
     if options.fireball {
-        world.launch_fireball(None);
+        sim.world.launch_fireball(None);
     }
     if let Some(trace) = trace.as_deref_mut() {
-        with_balls(world, gpu.as_deref(), |world| trace.state(world, &[]))??;
+        with_balls(&mut sim.world, gpu.as_deref(), |world| {
+            trace.state(world, &[])
+        })??;
     }
 
     let mut events = [0u64; 6];
     let mut pending = Vec::new();
     for step in 1..=options.steps {
-        world.step();
-        pending.extend(world.drain_events());
-        if let Some(balls) = gpu.as_deref_mut() {
-            balls.step(world)?;
-            balls.take_catches(&mut pending);
-        }
+        sim.tick_with(gpu.as_deref_mut())?;
+        pending.extend_from_slice(sim.last_events());
         for event in &pending {
             events[event_index(&event.kind)] += 1;
         }
         match trace.as_deref_mut() {
             Some(trace) => {
                 if step % every == 0 || step == options.steps {
-                    with_balls(world, gpu.as_deref(), |world| trace.state(world, &pending))??;
+                    with_balls(&mut sim.world, gpu.as_deref(), |world| {
+                        trace.state(world, &pending)
+                    })??;
                     pending.clear();
                 }
             }
@@ -182,7 +184,7 @@ pub fn run<W: Write>(
     }
 
     let wall = started.elapsed();
-    with_balls(world, gpu.as_deref(), |world| {
+    with_balls(&mut sim.world, gpu.as_deref(), |world| {
         summarize(world, scene, options, wall, events)
     })
 }
