@@ -13,6 +13,7 @@ mod errors;
 mod events;
 mod measures;
 mod overrides;
+mod progress;
 mod render;
 mod run;
 mod scene;

@@ -16,6 +16,7 @@ use crate::balls::Balls;
 use crate::checks::{place_problem, speed_problem};
 use crate::errors::{gpu_error, value_error};
 use crate::events::Event;
+use crate::progress::Progress;
 use crate::run::{MakeError, Run, Saved};
 use crate::scene::Scene;
 use crate::trace::write_trace;
@@ -43,6 +44,31 @@ const SIGNAL_EVERY: Duration = Duration::from_millis(50);
 #[pyclass(module = "rolypoly", name = "World")]
 pub struct World {
     pub run: Run,
+}
+
+impl World {
+    /// `total` steps, in runs of at most [`SIGNAL_EVERY`] without the GIL,
+    /// signals checked and `bar` moved on between them.
+    fn step_with(&mut self, py: Python<'_>, total: u64, bar: &Progress<'_>) -> PyResult<()> {
+        let run = &mut self.run;
+        let mut left = total;
+        while left > 0 {
+            let done = py.detach(|| {
+                let started = Instant::now();
+                let mut done = 0;
+                while done < left && started.elapsed() < SIGNAL_EVERY {
+                    run.tick()?;
+                    done += 1;
+                }
+                Ok::<u64, rolypoly_gpu::GpuError>(done)
+            });
+            let done = done.map_err(|e| gpu_error(&e))?;
+            left -= done;
+            bar.advance(done)?;
+            py.check_signals()?;
+        }
+        Ok(())
+    }
 }
 
 #[pymethods]
@@ -82,27 +108,19 @@ impl World {
 
     /// Advances the world by ``n`` fixed steps (``n * dt`` seconds). Other
     /// Python threads run while it steps; Ctrl-C stops it between steps.
-    #[pyo3(signature = (n=1))]
-    fn step(&mut self, py: Python<'_>, n: i64) -> PyResult<()> {
-        let mut left = u64::try_from(n)
+    ///
+    /// ``progress``: None (the default) shows a tqdm bar where tqdm is
+    /// installed, once stepping has lasted a second; True shows it at once
+    /// (tqdm required); False never.
+    #[pyo3(signature = (n=1, progress=None))]
+    fn step(&mut self, py: Python<'_>, n: i64, progress: Option<bool>) -> PyResult<()> {
+        let total = u64::try_from(n)
             .map_err(|_| value_error(format!("n = {n}: the number of steps cannot be negative")))?;
-        let run = &mut self.run;
-        while left > 0 {
-            let done = py.detach(|| {
-                let started = Instant::now();
-                let mut done = 0;
-                while done < left && started.elapsed() < SIGNAL_EVERY {
-                    run.tick()?;
-                    done += 1;
-                }
-                Ok::<u64, rolypoly_gpu::GpuError>(done)
-            });
-            left -= done.map_err(|e| gpu_error(&e))?;
-            py.check_signals()?;
-        }
-        Ok(())
+        let bar = Progress::new(py, total, progress)?;
+        let stepped = self.step_with(py, total, &bar);
+        bar.close()?;
+        stepped
     }
-
     /// The steps that ``seconds`` of simulated time take, rounded as
     /// ``rolypoly render --time`` rounds them.
     fn steps_for(&self, seconds: f64) -> PyResult<u64> {

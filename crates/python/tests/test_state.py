@@ -2,6 +2,7 @@
 refusing bad input with a message that names the ball, energy, events,
 snapshots, reprs and the GIL released while stepping."""
 
+import sys
 import threading
 import time
 
@@ -325,6 +326,31 @@ def test_the_gpu_engine_takes_checked_positions_and_velocities():
     v = w.balls.velocities
     v[2] = [np.nan, 0.0, 0.0]
     refused(w, "velocities", v, "ball 2")
+
+
+def test_long_steps_show_a_progress_bar_where_tqdm_is(capsys):
+    pytest.importorskip("tqdm")
+    w = rolypoly.World(rolypoly.Scene.default({"balls.count": 50}), seed=1)
+    w.step(120, progress=True)
+    bar = capsys.readouterr().err
+    assert "120/120" in bar and "step" in bar, bar
+    assert w.steps == 120
+    # Short steps print nothing: the bar waits a second before it shows.
+    w.step(5)
+    w.step(30, progress=False)
+    assert capsys.readouterr().err == ""
+    assert w.steps == 155
+
+
+def test_without_tqdm_steps_run_barless_unless_a_bar_is_asked_for(monkeypatch, capsys):
+    monkeypatch.setitem(sys.modules, "tqdm", None)
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)
+    w = rolypoly.World(rolypoly.Scene.default({"balls.count": 20}), seed=2)
+    w.step(40)
+    assert w.steps == 40 and capsys.readouterr().err == ""
+    with pytest.raises(ImportError, match="pip install tqdm"):
+        w.step(10, progress=True)
+    assert w.steps == 40, "refused before stepping"
 
 
 def test_the_gil_is_released_while_stepping():
