@@ -1,6 +1,6 @@
 // The debug views' marks, over the finished frame at the output's
 // resolution: each a screen-facing quad sized in pixels around a line, a
-// dot or an arrowhead between two points of the world, with a dark outline
+// dot, an arrow or a spike between two points of the world, with a dark outline
 // and smoothed edges. A mark that a body hides (it lies further from the
 // eye than the surface the scene drew at its pixel) is drawn faintly; marks
 // flagged "over" (inside a body) are drawn in full.
@@ -35,13 +35,15 @@ const SPIKE_WIDTH: f32 = 2.5;
 const NEAR_W: f32 = 0.01;
 
 struct MarkIn {
-    // xyz: where it starts; w: 0 line, 1 dot, 2 arrowhead, 3 spike.
+    // xyz: where it starts; w: 0 line, 1 dot, 2 arrow, 3 spike.
     @location(0) from_shape: vec4<f32>,
     // xyz: where it ends; w: width, diameter or length, in mark pixels.
     @location(1) to_size: vec4<f32>,
     // rgb: colour; a: 1 over everything.
     @location(2) color: vec4<f32>,
-    // x: the most its size may be, in metres where it is (0: no most).
+    // x: the most its size (an arrow's: its head's length) may be, in
+    // metres where it is (0: no most); y: an arrow's head length, in mark
+    // pixels.
     @location(3) cap: vec4<f32>,
 };
 
@@ -49,11 +51,16 @@ struct MarkOut {
     @builtin(position) clip: vec4<f32>,
     // Output pixels from the mark's start (x along it, y across).
     @location(0) local: vec2<f32>,
-    // x: shape; y: half its width (a dot's radius, a head's half base);
-    // z: its length on screen; w: over everything (1) or not.
-    @location(1) @interpolate(flat) shape: vec4<f32>,
+    // x: the line's half width (a dot's radius); y: the line's length on
+    // screen (a dot's 0, an arrow's up to its head); z: the outline's
+    // width; w: over everything (1) or not.
+    @location(1) @interpolate(flat) line: vec4<f32>,
     @location(2) @interpolate(flat) color: vec3<f32>,
+    // Where it is, for the scene's surfaces to hide it.
     @location(3) world: vec3<f32>,
+    // An arrow's head (x 0 for other marks): its length, where its tip is
+    // along the mark, the outward normal of its upper side.
+    @location(4) @interpolate(flat) head: vec4<f32>,
 };
 
 fn to_pixels(clip: vec4<f32>) -> vec2<f32> {
@@ -86,17 +93,26 @@ fn vs_mark(@builtin(vertex_index) corner: u32, m: MarkIn) -> MarkOut {
     }
     let pa = to_pixels(ca);
     let pb = to_pixels(cb);
-    // Its size in output pixels, no more than its cap seen where it is.
+    let is_arrow = shape > 1.5 && shape < 2.5;
+    // Its size in output pixels, no more than its cap seen where it is (an
+    // arrow's cap holds its head, at its end).
     var size = m.to_size.w * scale;
+    var head = m.cap.y * scale;
     if m.cap.x > 0.0 {
-        var w = ca.w;
-        if shape > 1.5 && shape < 2.5 {
-            w = cb.w;
+        if is_arrow {
+            head = min(head, m.cap.x * overlay.lens.x / cb.w);
+        } else {
+            size = min(size, m.cap.x * overlay.lens.x / ca.w);
         }
-        size = min(size, m.cap.x * overlay.lens.x / w);
     }
     let span = pb - pa;
     let len = length(span);
+    // An arrow shorter on screen than its line is wide shows no direction
+    // (seen end on, or a ball all but at rest): not drawn.
+    if is_arrow && len < size {
+        out.clip = vec4<f32>(0.0, 0.0, 2.0, 1.0);
+        return out;
+    }
     var dir = vec2<f32>(1.0, 0.0);
     if len > 1e-3 {
         dir = span / len;
@@ -105,14 +121,19 @@ fn vs_mark(@builtin(vertex_index) corner: u32, m: MarkIn) -> MarkOut {
     var half = 0.5 * size;
     // Room for the outline and a pixel of smoothing.
     let pad = OUTLINE * scale + 0.75;
-    // A strip of two triangles over the corners (0, 0), (1, 0), (0, 1),
-    // (1, 1): four vertices a mark.
-    let k = vec2<f32>(f32(corner & 1u), f32(corner >> 1u));
+    // A strip of eight vertices a mark, in pairs across it: most marks are
+    // a quad over the corners (0, 0), (0, 1), (1, 0), (1, 1), its last two
+    // pairs repeating the second (no area); an arrow's four pairs hug its
+    // line and its head, so that a crowd's arrows cover few pixels.
+    let pair = corner >> 1u;
+    let side = f32(corner & 1u);
+    let k = vec2<f32>(f32(min(pair, 1u)), side);
     var local: vec2<f32>;
     var pixel: vec2<f32>;
     var clip: vec4<f32>;
     var world: vec3<f32>;
     var drawn_length = len;
+    var head_half = 0.0;
     if shape > 2.5 {
         // A spike: a line of its own length on screen, from its start
         // towards where its end shows.
@@ -122,69 +143,74 @@ fn vs_mark(@builtin(vertex_index) corner: u32, m: MarkIn) -> MarkOut {
         pixel = pa + dir * local.x + across * local.y;
         clip = ca;
         world = a;
-    } else if shape < 0.5 {
-        // A line: its width around the segment, round ends.
-        local = vec2<f32>(mix(-half - pad, len + half + pad, k.x), mix(-half - pad, half + pad, k.y));
-        pixel = pa + dir * local.x + across * local.y;
-        let t = clamp(local.x / max(len, 1e-3), 0.0, 1.0);
-        clip = mix(ca, cb, t);
-        world = mix(a, b, t);
-    } else if shape < 1.5 {
+    } else if shape > 0.5 && shape < 1.5 {
         // A dot: a disc around its point.
         local = mix(vec2<f32>(-half - pad), vec2<f32>(half + pad), k);
         pixel = pa + local;
         clip = ca;
         world = a;
     } else {
-        // An arrowhead: its tip at the end, its base `length` back.
-        let head = size;
-        drawn_length = head;
-        half = HEAD_WIDTH * head;
-        local = vec2<f32>(mix(-pad, head + pad, k.x), mix(-half - pad, half + pad, k.y));
-        pixel = pb - dir * local.x + across * local.y;
-        clip = cb;
-        world = b;
+        // A line: its width around the segment, round ends.
+        local = vec2<f32>(mix(-half - pad, len + half + pad, k.x), mix(-half - pad, half + pad, k.y));
+        if is_arrow {
+            head_half = HEAD_WIDTH * head;
+            // Its line up to the head's base, then a trapezoid around the
+            // head and its outline (its sides offset from the head's,
+            // whose slope is HEAD_WIDTH); a head no wider than the line
+            // takes the line's quad.
+            if head_half >= 1.5 * half + pad {
+                let base = max(len - head - pad, -half - pad);
+                let xs = array<f32, 4>(-half - pad, base, base, len + pad);
+                let ws = array<f32, 4>(half + pad, half + pad, head_half + 1.7 * pad, 0.7 * pad);
+                local = vec2<f32>(xs[pair], mix(-ws[pair], ws[pair], side));
+            }
+        }
+        pixel = pa + dir * local.x + across * local.y;
+        let t = clamp(local.x / max(len, 1e-3), 0.0, 1.0);
+        clip = mix(ca, cb, t);
+        world = mix(a, b, t);
     }
     out.clip = vec4<f32>(pixel / (0.5 * overlay.sizes.xy) * clip.w, clip.z, clip.w);
     out.local = local;
-    out.shape = vec4<f32>(shape, half, drawn_length, m.color.a);
     out.color = m.color.rgb;
     out.world = world;
+    if is_arrow {
+        let shaft = max(len - head, 0.0);
+        out.line = vec4<f32>(half, shaft, OUTLINE * scale, m.color.a);
+        out.head = vec4<f32>(head, len, normalize(vec2<f32>(-head_half, max(head, 1e-3))));
+    } else {
+        out.line = vec4<f32>(half, drawn_length, OUTLINE * scale, m.color.a);
+        out.head = vec4<f32>(0.0);
+    }
     return out;
 }
 
 // How far outside the mark's own shape a point is (pixels; negative
-// inside).
-fn outside(local: vec2<f32>, shape: vec4<f32>) -> f32 {
-    let half = shape.y;
-    let len = shape.z;
-    if shape.x < 0.5 || shape.x > 2.5 {
-        let along = clamp(local.x, 0.0, len);
-        return distance(local, vec2<f32>(along, 0.0)) - half;
+// inside): its line (a dot is a line of no length, round-ended), and an
+// arrow's head, a triangle with its tip at `head.y` along the mark; beyond
+// the head's slanted sides the distance is along their outward normal.
+fn outside(local: vec2<f32>, line: vec4<f32>, head: vec4<f32>) -> f32 {
+    let along = clamp(local.x, 0.0, line.y);
+    var d = distance(local, vec2<f32>(along, 0.0)) - line.x;
+    if head.x > 0.0 {
+        let p = vec2<f32>(head.y - local.x, abs(local.y));
+        d = min(d, max(max(dot(p, head.zw), p.x - head.x), -p.x));
     }
-    if shape.x < 1.5 {
-        return length(local) - half;
-    }
-    // The head: a triangle with its tip at x = 0 and its base at x = len,
-    // `half` either side; the distance beyond its slanted sides along
-    // their outward normal.
-    let slant = normalize(vec2<f32>(-half, len));
-    let p = vec2<f32>(local.x, abs(local.y));
-    return max(max(dot(p, slant), local.x - len), -local.x);
+    return d;
 }
 
 @fragment
 fn fs_mark(in: MarkOut) -> @location(0) vec4<f32> {
-    let scale = overlay.camera.w;
-    let d = outside(in.local, in.shape);
-    let rim = OUTLINE * scale;
+    let d = outside(in.local, in.line, in.head);
+    let rim = in.line.z;
     if d > rim + 0.5 {
         discard;
     }
-    let core = 1.0 - smoothstep(-0.5, 0.5, d);
-    var alpha = 1.0 - smoothstep(rim - 0.5, rim + 0.5, d);
+    // A pixel's ramp at each edge, the core's and the outline's.
+    let core = clamp(0.5 - d, 0.0, 1.0);
+    var alpha = clamp(rim + 0.5 - d, 0.0, 1.0);
     let color = mix(OUTLINE_COLOR, in.color, core);
-    if in.shape.w < 0.5 {
+    if in.line.w < 0.5 {
         // Hidden behind a surface the scene drew nearer: faint.
         let at = vec2<i32>(in.clip.xy * overlay.sizes.zw / overlay.sizes.xy);
         let surface = textureLoad(geometry, at, 0).w;

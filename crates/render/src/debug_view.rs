@@ -11,7 +11,7 @@
 //! coloured ball alike and at any distance (as Box2D's, Jolt's and MuJoCo's
 //! debug draws do). Marks hidden behind a body are drawn faintly, not lost.
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashMap;
 use std::fmt;
 
 use glam::{DVec3, Vec3};
@@ -75,24 +75,24 @@ const STANDARD_GRAVITY: f64 = 9.81;
 /// that a tumbler's weight and a hard impact fit the scene as well as a
 /// ball resting on the floor. An impulse too small to reach a length is
 /// not drawn.
-const REFERENCE_RADII: f64 = 2.5;
+const REFERENCE_RADII: f64 = 3.0;
 /// Ball radii an impulse's line grows by for each tenfold of impulse.
 const RADII_PER_DECADE: f64 = 1.0;
 /// Seconds of travel a velocity arrow shows.
-const VELOCITY_SECONDS: f32 = 0.25;
+const VELOCITY_SECONDS: f32 = 0.1;
 
 /// The marks' sizes, in pixels of a frame 360 pixels high: a taller frame
 /// draws them larger in proportion (see [`mark_scale`]), so that they look
 /// alike at any resolution and quality level.
 pub mod mark_size {
     /// A contact's dot, across.
-    pub const DOT: f32 = 13.0;
+    pub const DOT: f32 = 15.0;
     /// An impact's dot, across.
-    pub const IMPACT_DOT: f32 = 17.0;
+    pub const IMPACT_DOT: f32 = 19.0;
     /// A contact's normal, drawn from its dot.
     pub const NORMAL: f32 = 22.0;
     /// Where an impulse acts, across.
-    pub const IMPULSE_DOT: f32 = 10.0;
+    pub const IMPULSE_DOT: f32 = 12.0;
     /// A spike's width (see debug_marks.wgsl's `SPIKE_WIDTH`).
     pub const SPIKE: f32 = 2.5;
     /// A centre of mass's dot, across.
@@ -102,8 +102,9 @@ pub mod mark_size {
     /// A vector's width (impulses, a tumbler's velocity; a ball's, one of
     /// thousands in a crowd, is a line's).
     pub const VECTOR: f32 = 3.0;
-    /// An arrowhead's length.
-    pub const HEAD: f32 = 14.0;
+    /// An arrowhead's length over its line's width: a vector's head is
+    /// 13.5 long, the head of a ball's line (one of thousands) 9.
+    pub const HEAD_PER_WIDTH: f32 = 4.5;
     /// The dark outline around every mark.
     pub const OUTLINE: f32 = 1.0;
 }
@@ -200,8 +201,9 @@ pub enum MarkShape {
     Line,
     /// A dot at `from`.
     Dot,
-    /// An arrowhead with its tip at `to`, pointing away from `from`.
-    Head,
+    /// An arrow from `from` to `to`: a line of its width with a head at
+    /// `to`, one mark (a crowd's arrows are thousands).
+    Arrow,
     /// A line of a fixed length on screen (its size) from `from`, towards
     /// where `to` shows: a direction, such as a contact's normal.
     Spike,
@@ -218,16 +220,17 @@ pub struct DebugMark {
     pub shape: f32,
     /// Where it ends (m); a dot's is its `from`.
     pub to: [f32; 3],
-    /// A line's width, a dot's diameter, a head's or a spike's length
+    /// A line's or an arrow's width, a dot's diameter, a spike's length
     /// (pixels of a 360-pixel frame).
     pub size: f32,
     /// Its colour (linear RGB), and 1 in alpha to be drawn over everything,
     /// 0 to be drawn faint where a body hides it.
     pub color: [f32; 4],
-    /// The most its size may be, in metres seen where it is (0: no most):
-    /// a contact's dot is never larger than its ball, an arrowhead never
-    /// longer than half its arrow, so that a crowd far off stays legible
-    /// (and cheap to draw); then a pad.
+    /// x: the most its size (an arrow's: its head's length) may be, in
+    /// metres seen where it is (0: no most): a contact's dot is never
+    /// larger than its ball, an arrowhead never longer than half its
+    /// arrow, so that a crowd far off stays legible (and cheap to draw).
+    /// y: an arrow's head length (pixels of a 360-pixel frame). Then a pad.
     pub cap: [f32; 4],
 }
 
@@ -250,7 +253,7 @@ impl DebugMark {
         match self.shape as u32 {
             0 => MarkShape::Line,
             1 => MarkShape::Dot,
-            2 => MarkShape::Head,
+            2 => MarkShape::Arrow,
             _ => MarkShape::Spike,
         }
     }
@@ -331,6 +334,18 @@ impl Marks {
         cap: f32,
         color: Vec3,
     ) {
+        self.push_mark(shape, from, to, size, [cap, 0.0, 0.0, 0.0], color);
+    }
+
+    fn push_mark(
+        &mut self,
+        shape: MarkShape,
+        from: Vec3,
+        to: Vec3,
+        size: f32,
+        cap: [f32; 4],
+        color: Vec3,
+    ) {
         let color = color.min(Vec3::ONE);
         self.marks.push(DebugMark {
             from: from.to_array(),
@@ -338,7 +353,7 @@ impl Marks {
             to: to.to_array(),
             size,
             color: [color.x, color.y, color.z, if self.over { 1.0 } else { 0.0 }],
-            cap: [cap, 0.0, 0.0, 0.0],
+            cap,
         });
     }
 
@@ -354,50 +369,56 @@ impl Marks {
         self.push(MarkShape::Dot, at, at, across, color);
     }
 
-    /// An arrow from `from` along `along`, `width` wide, its head sized in
-    /// pixels and never longer than half the arrow.
+    /// An arrow from `from` along `along`, `width` wide, its head in
+    /// proportion to its width and never longer than half the arrow.
     fn arrow(&mut self, from: Vec3, along: Vec3, width: f32, color: Vec3) {
         let length = along.length();
         if length < 1e-4 {
             return;
         }
-        let to = from + along;
-        self.push(MarkShape::Line, from, to, width, color);
-        self.push_capped(
-            MarkShape::Head,
-            from,
-            to,
-            mark_size::HEAD,
-            0.5 * length,
-            color,
-        );
+        let cap = [0.5 * length, mark_size::HEAD_PER_WIDTH * width, 0.0, 0.0];
+        self.push_mark(MarkShape::Arrow, from, from + along, width, cap, color);
     }
 
     /// The edges of boxes of side `size` with their lowest corners at
-    /// `corners`, each edge once however many boxes share it (in a crowd,
-    /// up to four do).
+    /// `corners`: each edge once however many boxes share it (in a crowd,
+    /// up to four do), and edges end to end along one line as one segment,
+    /// so that a crowd's grid is a few long lines, cheap to draw.
     fn boxes(&mut self, corners: &[DVec3], size: f64, color: Vec3) {
         let Some(&origin) = corners.first() else {
             return;
         };
-        let mut drawn: HashSet<([i64; 3], usize)> = HashSet::with_capacity(4 * corners.len());
+        // Each edge of unit length on the cells' lattice: its axis, the
+        // line it lies on (its other two coordinates), where along it.
+        let mut edges: Vec<(usize, [i64; 2], i64)> = Vec::with_capacity(12 * corners.len());
         for lo in corners {
             let cell = ((*lo - origin) / size).round().as_i64vec3().to_array();
             for axis in 0..3 {
                 let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
                 for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                    let mut start = cell;
-                    start[u] += a;
-                    start[v] += b;
-                    if !drawn.insert((start, axis)) {
-                        continue;
-                    }
-                    let from = origin + glam::I64Vec3::from_array(start).as_dvec3() * size;
-                    let mut to = from;
-                    to[axis] += size;
-                    self.segment(from.as_vec3(), to.as_vec3(), color);
+                    edges.push((axis, [cell[u] + a, cell[v] + b], cell[axis]));
                 }
             }
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        let corner = |axis: usize, line: [i64; 2], along: i64| {
+            let mut at = [0; 3];
+            at[axis] = along;
+            at[(axis + 1) % 3] = line[0];
+            at[(axis + 2) % 3] = line[1];
+            (origin + glam::I64Vec3::from_array(at).as_dvec3() * size).as_vec3()
+        };
+        let mut rest = edges.as_slice();
+        while let Some(&(axis, line, first)) = rest.first() {
+            let run = rest
+                .iter()
+                .zip(first..)
+                .take_while(|&(&(a, l, along), next)| a == axis && l == line && along == next)
+                .count();
+            let last = first + run as i64;
+            self.segment(corner(axis, line, first), corner(axis, line, last), color);
+            rest = &rest[run..];
         }
     }
 }
@@ -468,8 +489,8 @@ impl DebugLayer {
                 ),
             ],
             DebugLayer::Impulses => vec![
-                entry(MarkShape::Head, IMPULSE_COLOR, "impulse along the normal"),
-                entry(MarkShape::Head, FRICTION_COLOR, "friction's impulse"),
+                entry(MarkShape::Arrow, IMPULSE_COLOR, "impulse along the normal"),
+                entry(MarkShape::Arrow, FRICTION_COLOR, "friction's impulse"),
                 entry(
                     MarkShape::Line,
                     Vec3::splat(0.8),
@@ -481,11 +502,11 @@ impl DebugLayer {
             ],
             DebugLayer::Velocities => vec![
                 entry(
-                    MarkShape::Head,
+                    MarkShape::Arrow,
                     VELOCITY_COLOR,
                     &format!("velocity: where it goes in {VELOCITY_SECONDS} s"),
                 ),
-                entry(MarkShape::Head, SPIN_COLOR, "spin, along its axis"),
+                entry(MarkShape::Arrow, SPIN_COLOR, "spin, along its axis"),
             ],
             DebugLayer::Grid => vec![entry(
                 MarkShape::Line,
@@ -500,7 +521,7 @@ impl DebugLayer {
             ],
             DebugLayer::Com => vec![
                 entry(dot, COM_COLOR, "centre of mass"),
-                entry(MarkShape::Head, WEIGHT_COLOR, "its weight, straight down"),
+                entry(MarkShape::Arrow, WEIGHT_COLOR, "its weight, straight down"),
                 entry(
                     dot,
                     kind_color(ContactKind::TumblerFloor),
@@ -784,51 +805,99 @@ impl SceneView {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::collections::HashSet;
 
-    /// The segments `boxes` draws, as sorted pairs of corners.
-    fn edges(corners: &[DVec3], size: f64) -> Vec<([i64; 3], [i64; 3])> {
+    /// The segments `boxes` draws, in steps of `size` from `origin`:
+    /// (axis, its start, its length).
+    fn segments(corners: &[DVec3], size: f64, origin: DVec3) -> Vec<(usize, [i64; 3], i64)> {
         let mut marks = Marks::default();
         marks.boxes(corners, size, Vec3::ONE);
-        let key = |p: [f32; 3]| p.map(|c| (f64::from(c) * 1000.0).round() as i64);
-        let mut out: Vec<_> = marks
+        let steps = |p: [f32; 3]| {
+            let steps = (Vec3::from(p).as_dvec3() - origin) / size;
+            assert!(
+                (steps - steps.round()).abs().max_element() < 1e-3,
+                "{steps} off the lattice"
+            );
+            steps.round().as_i64vec3().to_array()
+        };
+        marks
             .marks
             .iter()
             .map(|m| {
-                let (a, b) = (key(m.from), key(m.to));
-                (a.min(b), a.max(b))
+                let (a, b) = (steps(m.from), steps(m.to));
+                let axis = (0..3)
+                    .find(|&k| a[k] != b[k])
+                    .expect("a segment has a length");
+                let along: Vec<usize> = (0..3).filter(|&k| a[k] != b[k]).collect();
+                assert_eq!(along, [axis], "a segment lies along one axis");
+                (axis, a.min(b), (b[axis] - a[axis]).abs())
             })
-            .collect();
-        out.sort_unstable();
+            .collect()
+    }
+
+    /// The cells' edges of unit length, each once.
+    fn unit_edges(cells: &[[i64; 3]]) -> HashSet<(usize, [i64; 3])> {
+        let mut out = HashSet::new();
+        for cell in cells {
+            for axis in 0..3 {
+                let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+                for (a, b) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    let mut start = *cell;
+                    start[u] += a;
+                    start[v] += b;
+                    out.insert((axis, start));
+                }
+            }
+        }
         out
     }
 
     #[test]
-    fn boxes_draw_each_shared_edge_once_where_the_cells_are() {
+    fn boxes_draw_each_edge_once_and_edges_in_line_as_one() {
         let origin = DVec3::new(-0.35, 0.05, 1.1);
         let size = 0.25;
-        let at = |x: f64, y: f64, z: f64| origin + DVec3::new(x, y, z) * size;
-        // One box: its twelve edges.
-        assert_eq!(edges(&[at(0.0, 0.0, 0.0)], size).len(), 12);
-        // Two side by side share a face's four edges.
-        let pair = edges(&[at(0.0, 0.0, 0.0), at(1.0, 0.0, 0.0)], size);
-        assert_eq!(pair.len(), 20);
-        pair.windows(2).for_each(|w| assert_ne!(w[0], w[1]));
-        // A 2 x 2 x 2 block: 3 axes x 3 x 3 lines x 2 segments.
-        let mut block = Vec::new();
-        for k in 0..8 {
-            block.push(at(
-                f64::from(k & 1),
-                f64::from((k >> 1) & 1),
-                f64::from(k >> 2),
-            ));
-        }
-        assert_eq!(edges(&block, size).len(), 54);
-        // Every end is a corner of the lattice the cells stand on.
-        for (a, b) in edges(&block, size) {
-            for p in [a, b] {
-                let p = DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64) / 1000.0;
-                let steps = (p - origin) / size;
-                assert!((steps - steps.round()).abs().max_element() < 1e-3, "{p}");
+        let block: Vec<[i64; 3]> = (0..8).map(|k| [k & 1, (k >> 1) & 1, k >> 2]).collect();
+        let crowd: Vec<[i64; 3]> = (0..60)
+            .map(|k: i64| [(k * 7) % 5, (k * 3) % 4, (k * 11) % 6])
+            .collect();
+        // One box: its twelve edges; two side by side: four lines of two
+        // along x and six of one either way; a 2 x 2 x 2 block: 3 axes x
+        // 3 x 3 lines.
+        for (cells, count) in [
+            (vec![[0, 0, 0]], Some(12)),
+            (vec![[0, 0, 0], [1, 0, 0]], Some(16)),
+            (block, Some(27)),
+            (crowd, None),
+        ] {
+            let corners: Vec<DVec3> = cells
+                .iter()
+                .map(|c| origin + glam::I64Vec3::from_array(*c).as_dvec3() * size)
+                .collect();
+            let drawn = segments(&corners, size, origin);
+            if let Some(count) = count {
+                assert_eq!(drawn.len(), count, "{cells:?}");
+            }
+            // Together they are the cells' edges, none twice.
+            let mut covered = HashSet::new();
+            for &(axis, start, length) in &drawn {
+                for k in 0..length {
+                    let mut at = start;
+                    at[axis] += k;
+                    assert!(
+                        covered.insert((axis, at)),
+                        "{at:?} along {axis} drawn twice"
+                    );
+                }
+            }
+            assert_eq!(covered, unit_edges(&cells));
+            // No segment ends where another on its line starts.
+            for &(axis, start, length) in &drawn {
+                let mut end = start;
+                end[axis] += length;
+                assert!(
+                    !drawn.iter().any(|&(a, s, _)| a == axis && s == end),
+                    "{start:?} along {axis} not joined to the next"
+                );
             }
         }
     }

@@ -97,18 +97,17 @@ fn drawn(marks: &[DebugMark]) -> Vec<(Vec2, Vec2, f32)> {
                     out.push((project(a), project(a), reach));
                 }
             }
-            MarkShape::Head => {
-                if in_front(b) {
-                    out.push((project(b), project(b), m.size * scale + reach));
-                }
-            }
             MarkShape::Spike => {
                 if in_front(a) {
                     let width = (0.5 * mark_size::SPIKE + mark_size::OUTLINE) * scale + 1.5;
                     out.push((project(a), project(a), m.size * scale + width));
                 }
             }
-            MarkShape::Line => {
+            MarkShape::Line | MarkShape::Arrow => {
+                if m.shape() == MarkShape::Arrow && in_front(b) {
+                    let head = m.cap[1] * scale;
+                    out.push((project(b), project(b), head + reach));
+                }
                 for k in 0..PIECES {
                     let p = a.lerp(b, k as f32 / PIECES as f32);
                     let q = a.lerp(b, (k + 1) as f32 / PIECES as f32);
@@ -336,7 +335,7 @@ fn impulse_lines_fit_the_scene_for_every_kind_of_body() {
         let lines: Vec<f32> = shown
             .debug_marks
             .iter()
-            .filter(|m| m.shape() == MarkShape::Line)
+            .filter(|m| matches!(m.shape(), MarkShape::Line | MarkShape::Arrow))
             .map(|m| Vec3::from(m.from).distance(Vec3::from(m.to)))
             .collect();
         assert!(!lines.is_empty(), "seed {seed}: no impulse drawn");

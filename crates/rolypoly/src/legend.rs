@@ -92,7 +92,7 @@ fn swatch(ui: &mut egui::Ui, entry: &LegendEntry) {
             painter.line_segment([left, right], outline);
             painter.line_segment([left, right], Stroke::new(3.0, color));
         }
-        MarkShape::Head => {
+        MarkShape::Arrow => {
             let tip = right - Vec2::new(2.0, 0.0);
             let head = [tip, tip + Vec2::new(-9.0, -5.0), tip + Vec2::new(-9.0, 5.0)];
             painter.line_segment([left, tip - Vec2::new(8.0, 0.0)], outline);

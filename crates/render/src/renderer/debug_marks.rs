@@ -159,7 +159,7 @@ impl DebugMarksPass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, bind_group, &[]);
         pass.set_vertex_buffer(0, self.marks.buffer.slice(..));
-        pass.draw(0..4, self.marks.range());
+        pass.draw(0..8, self.marks.range());
         1
     }
 }
