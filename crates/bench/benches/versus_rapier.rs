@@ -449,11 +449,12 @@ fn main() {
                     rapier_run.steps_per_second
                 );
             }
-            if let (Some(gpu_run), Some(compute)) = (gpu_run, &compute) {
+            if let (Some(gpu_run), Some(compute), Some(gpu)) = (gpu_run, &compute, gpu.as_ref()) {
                 println!(
-                    "{:>7} rolypoly-gpu over rolypoly: {:.2}",
+                    "{:>7} rolypoly-gpu over rolypoly: {:.2}; dispatches a step: {}",
                     "",
-                    gpu_run.steps_per_second / our_run.steps_per_second
+                    gpu_run.steps_per_second / our_run.steps_per_second,
+                    gpu.dispatches_per_step()
                 );
                 if let Some(target) = gpu_target_for(n, gpu_run, &compute.adapter) {
                     println!("{:>7} {target}", "");

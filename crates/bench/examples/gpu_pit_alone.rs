@@ -73,6 +73,10 @@ fn run() -> Result<(), String> {
         );
     }
     let steps = turns * per_turn;
-    println!("{:.2} steps/s", steps as f64 / stepping.as_secs_f64());
+    println!(
+        "{:.2} steps/s, dispatches a step: {}",
+        steps as f64 / stepping.as_secs_f64(),
+        gpu.dispatches_per_step()
+    );
     Ok(())
 }

@@ -21,6 +21,11 @@ impl GpuPit {
         Ok(GpuPit { world, balls })
     }
 
+    /// Dispatches the engine's last step recorded.
+    pub fn dispatches_per_step(&self) -> u32 {
+        self.balls.dispatches_per_step()
+    }
+
     /// Each stage's mean GPU seconds over `steps` more steps, where the
     /// adapter writes timestamps.
     pub fn profile(&mut self, steps: u32) -> Result<Option<[f64; rolypoly_gpu::STAGES]>, GpuError> {

@@ -166,6 +166,10 @@ pub struct GpuBalls {
     report: wgpu::Buffer,
     catches: Vec<Event>,
     steps: u64,
+    /// Dispatches the last step recorded, one after another: on a GPU
+    /// each waits for the one before, so their count bounds a step's time
+    /// from below whatever the balls.
+    dispatches: u32,
 }
 
 impl GpuBalls {
@@ -330,6 +334,7 @@ impl GpuBalls {
             report,
             catches: Vec::new(),
             steps: 0,
+            dispatches: 0,
         };
         engine.upload(&balls, 0);
         engine.params.count = balls.len() as u32;
@@ -363,6 +368,13 @@ impl GpuBalls {
     /// Steps taken since it was built.
     pub fn steps(&self) -> u64 {
         self.steps
+    }
+
+    /// Dispatches the last step recorded (0 before the first): each waits
+    /// for the one before it, so on a GPU they set a floor under a step's
+    /// time, however few the balls.
+    pub fn dispatches_per_step(&self) -> u32 {
+        self.dispatches
     }
 
     /// What the renderer draws: each ball's centre and radius, then colour
@@ -520,7 +532,7 @@ impl GpuBalls {
             q.write_buffer(&self.buffers.event_count, 0, &[0; 4]);
         }
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.record_step(&mut encoder, timer);
+        self.dispatches = self.record_step(&mut encoder, timer);
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
         }
@@ -546,9 +558,12 @@ impl GpuBalls {
     }
 
     /// Records one step's passes into `encoder`, a compute pass a stage
-    /// (see [`Stage`]), each stamped by `timer` if given.
-    fn record_step(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&StageTimer>) {
+    /// (see [`Stage`]), each stamped by `timer` if given; returns the
+    /// dispatches recorded.
+    fn record_step(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&StageTimer>) -> u32 {
         let balls = u64::from(self.params.count);
+        let recorded = std::cell::Cell::new(0u32);
+        let count = || recorded.set(recorded.get() + 1);
         let p = &self.passes;
         let pass = |encoder: &mut wgpu::CommandEncoder,
                     stage: Stage,
@@ -565,6 +580,7 @@ impl GpuBalls {
                 pass.set_pipeline(pipeline);
                 let (x, y) = groups(items);
                 pass.dispatch_workgroups(x, y, 1);
+                count();
             };
         // The grid: count, scan, place, sort; its stamp spans all four.
         {
@@ -586,7 +602,7 @@ impl GpuBalls {
             0,
             4 * (self.cells + 1),
         );
-        self.scan.record(encoder);
+        recorded.set(recorded.get() + self.scan.record(encoder));
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("place balls in cells"),
@@ -609,6 +625,7 @@ impl GpuBalls {
         let in_one_group = |pass: &mut wgpu::ComputePass, pipeline: &wgpu::ComputePipeline| {
             pass.set_pipeline(pipeline);
             pass.dispatch_workgroups(1, 1, 1);
+            count();
         };
         let counts = &self.sweeps;
         pass(encoder, Stage::Impacts, &mut |pass| {
@@ -639,6 +656,7 @@ impl GpuBalls {
             if self.tumblers > 0 {
                 pass.set_pipeline(&p.sum_tumbler_push);
                 pass.dispatch_workgroups(self.tumblers as u32, 1, 1);
+                count();
             }
         });
         pass(encoder, Stage::Flight, &mut |pass| {
@@ -656,6 +674,7 @@ impl GpuBalls {
         pass(encoder, Stage::Instances, &mut |pass| {
             dispatch(pass, &p.write_instances, balls)
         });
+        recorded.get()
     }
 
     /// Steps `steps` times with each stage timed on the GPU, and returns

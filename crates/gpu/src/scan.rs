@@ -135,8 +135,9 @@ impl Scan {
 
     /// Records the scan into `encoder`: down the levels scanning blocks,
     /// then back up adding each block's offset. A level of one block is
-    /// scanned whole, and its total is not added back.
-    pub fn record(&self, encoder: &mut wgpu::CommandEncoder) {
+    /// scanned whole, and its total is not added back. Returns the
+    /// dispatches recorded.
+    pub fn record(&self, encoder: &mut wgpu::CommandEncoder) -> u32 {
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("scan"),
             timestamp_writes: None,
@@ -153,6 +154,7 @@ impl Scan {
             let (x, y) = groups(level.len);
             pass.dispatch_workgroups(x, y, 1);
         }
+        (2 * self.levels.len()).saturating_sub(1) as u32
     }
 }
 

@@ -128,6 +128,24 @@ fn a_ball_set_on_the_gpu_moves_from_there() {
     }
 }
 
+#[test]
+fn a_steps_dispatches_are_counted_and_do_not_grow_with_the_balls() {
+    let compute = compute();
+    let dispatches = |count: usize, side: f64| {
+        let (mut world, mut balls) = build(&compute, empty_room(DVec3::splat(side), count), 1);
+        assert_eq!(balls.dispatches_per_step(), 0, "none before the first step");
+        step(&mut world, &mut balls);
+        balls.dispatches_per_step()
+    };
+    let small = dispatches(500, 3.0);
+    let (some, many) = (dispatches(3000, 5.0), dispatches(30_000, 10.0));
+    // A world of up to 1024 balls sweeps each stage in one workgroup.
+    assert!(small > 0 && small < some, "{small} against {some}");
+    // Ten times the balls: the same passes, but for the grid's scan, one
+    // level (two dispatches) more for each 256-fold of cells.
+    assert!(many >= some && many <= some + 2, "{some} then {many}");
+}
+
 /// The largest change of velocity between two states of the same balls.
 fn largest_difference(a: &rolypoly_gpu::BallState, b: &rolypoly_gpu::BallState) -> f32 {
     a.velocities
