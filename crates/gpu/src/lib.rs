@@ -17,8 +17,8 @@
 //!    apart share no ball, so their threads never write the same one, and
 //!    there are no float atomics;
 //! 5. **report**: the tumblers' pushes, summed in a fixed order;
-//! 6. **flight**: balls in contact move at their solved velocity, lone
-//!    balls along their exact parabola, bouncing exactly off the walls;
+//! 6. **flight**: balls a contact held move at their solved velocity,
+//!    others along their exact parabola, bouncing exactly off the walls;
 //! 7. **project**: overlaps pushed out by position;
 //! 8. the renderer's ball instances written, on the GPU.
 //!

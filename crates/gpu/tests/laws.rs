@@ -139,6 +139,55 @@ fn elastic_balls_without_gravity_keep_their_energy_and_momentum() {
 }
 
 #[test]
+fn an_elastic_gas_under_gravity_keeps_its_energy() {
+    let compute = compute();
+    for (count, seed) in [(100, 2), (100, 5), (200, 3), (200, 8)] {
+        let mut config = empty_room(DVec3::new(8.0, 4.0, 8.0), count);
+        config.balls.restitution = 1.0;
+        config.room.restitution = 1.0;
+        config.balls.friction = 0.0;
+        config.room.friction = 0.0;
+        config.room.rolling_resistance = 0.0;
+        config.solver.bounce_threshold = 0.0;
+        config.balls.speed_min = 1.0;
+        config.balls.speed_max = 3.0;
+        config.balls.start_fill = 1.0;
+        let g = config.gravity;
+        let (mut world, mut balls) = build(&compute, config, seed);
+        // Kinetic and potential (from the floor, y = 0), in single precision's sum.
+        let energy = |s: &rolypoly_gpu::BallState| {
+            let potential: f64 = (0..s.positions.len())
+                .map(|i| g * f64::from(s.positions[i].y) / f64::from(s.inverse_masses[i]))
+                .sum();
+            s.kinetic_energy() + potential
+        };
+        let start = energy(&balls.read().unwrap());
+        let mut lowest = start;
+        for s in 0..1200 {
+            step(&mut world, &mut balls);
+            if s % 60 == 59 {
+                let now = energy(&balls.read().unwrap());
+                assert!(
+                    now <= start * (1.0 + 1e-4),
+                    "{count} balls, seed {seed}: {now} J from {start} J at step {s}"
+                );
+                lowest = lowest.min(now);
+            }
+        }
+        let lost = 1.0 - lowest / start;
+        eprintln!(
+            "{count} balls, seed {seed}: lost {:.3} % in 10 s",
+            100.0 * lost
+        );
+        assert!(
+            lost <= 0.01,
+            "{count} balls, seed {seed}: lost {:.2} %",
+            100.0 * lost
+        );
+    }
+}
+
+#[test]
 fn fast_balls_and_the_fireball_stay_finite_and_in_the_room() {
     let compute = compute();
     let mut config = empty_room(DVec3::new(3.0, 2.5, 3.0), 60);

@@ -1,7 +1,8 @@
-// The balls move. A ball the solver worked on moves at its solved velocity
-// (its walls were in the solver); its rolling slows on the walls that
-// pushed it. A ball alone flies its exact parabola from where the step
-// began and bounces exactly off the walls it meets on the way, coming to
+// The balls move. A ball a contact held in the solve moves at its solved
+// velocity (its walls were in the solver); its rolling slows on the walls
+// that pushed it. A ball alone, or one that met others only in the impacts at
+// the step's start, flies its exact parabola from where the step began and
+// bounces exactly off the walls it meets on the way, coming to
 // rest on one when it meets it slower than the bounce threshold. Each
 // takes the colour of a wall or tumbler it struck hard enough.
 
@@ -74,9 +75,10 @@ fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
     let im = vel[i].w;
     let step = dt();
     let events_above = params.grid.w;
+    var u = vel_start[i].xyz;
+    var w = spin[i].xyz;
     if (state[i] & SOLVED) != 0u {
         var v = vel[i].xyz;
-        var w = spin[i].xyz;
         for (var axis = 0u; axis < 3u; axis++) {
             let pushed = wall_impulse[i * 3u + axis].w;
             if !touches_wall(state[i], axis) || pushed <= 0.0 {
@@ -101,17 +103,31 @@ fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
                 set_color(i, bodies[b].info.z);
             }
         }
-        pos[i] = vec4<f32>(clamp_into_room(pos[i].xyz + v * step, r), r);
-        vel[i] = vec4<f32>(v, im);
-        spin[i] = vec4<f32>(w, 0.0);
-        return;
+        var held = body_impulse[i].w > 0.0;
+        for (var k = 0u; k < slot_count(state[i]); k++) {
+            held = held || slot_impulse[i * SLOTS + k].w > 0.0;
+        }
+        for (var axis = 0u; axis < 3u; axis++) {
+            held = held || (touches_wall(state[i], axis) && wall_impulse[i * 3u + axis].w > 0.0);
+        }
+        if held {
+            pos[i] = vec4<f32>(clamp_into_room(pos[i].xyz + v * step, r), r);
+            vel[i] = vec4<f32>(v, im);
+            spin[i] = vec4<f32>(w, 0.0);
+            return;
+        }
+        // No contact pushed it in the solve: it met its neighbours only in
+        // the impacts, at the step's start. From there it flies as a lone
+        // ball, its exact parabola, bouncing exactly off the walls it meets
+        // on the way. (Moved a whole step at its end velocity, it would
+        // fall g dt^2 / 2 too far each step, and an elastic gas under
+        // gravity would lose energy in every collision.)
+        u = v - gravity() * step;
     }
 
     let restitution = params.material.z;
     let mu = params.material.w;
     var x = pos[i].xyz;
-    var u = vel_start[i].xyz;
-    var w = spin[i].xyz;
     var g = gravity();
     var left = step;
     for (var bounce = 0; bounce < 8; bounce++) {
