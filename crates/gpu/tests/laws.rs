@@ -99,23 +99,30 @@ fn each_bounce_rises_e_squared_as_high_as_the_last() {
     }
 }
 
+/// `count` balls flying 1 to 3 m/s through an 8 x 4 x 8 m box, every
+/// impact elastic and frictionless; every impact bounces, however slow,
+/// as in the CPU engine's elastic room.
+fn elastic_gas(count: usize) -> rolypoly_physics::WorldConfig {
+    let mut config = empty_room(DVec3::new(8.0, 4.0, 8.0), count);
+    config.balls.restitution = 1.0;
+    config.room.restitution = 1.0;
+    config.balls.friction = 0.0;
+    config.room.friction = 0.0;
+    config.room.rolling_resistance = 0.0;
+    config.solver.bounce_threshold = 0.0;
+    config.balls.speed_min = 1.0;
+    config.balls.speed_max = 3.0;
+    config.balls.start_fill = 1.0;
+    config
+}
+
 #[test]
 fn elastic_balls_without_gravity_keep_their_energy_and_momentum() {
     let compute = compute();
     for seed in [2, 9] {
         // A gas: the balls fill 0.4 % of the box, and meet two at a time.
-        let mut config = empty_room(DVec3::new(8.0, 4.0, 8.0), 1000);
+        let mut config = elastic_gas(1000);
         config.gravity = 0.0;
-        config.balls.restitution = 1.0;
-        config.room.restitution = 1.0;
-        config.balls.friction = 0.0;
-        config.room.friction = 0.0;
-        config.room.rolling_resistance = 0.0;
-        // Every impact bounces, however slow, as in the CPU engine's elastic room.
-        config.solver.bounce_threshold = 0.0;
-        config.balls.speed_min = 1.0;
-        config.balls.speed_max = 3.0;
-        config.balls.start_fill = 1.0;
         let (mut world, mut balls) = build(&compute, config, seed);
         let start = balls.read().unwrap().kinetic_energy();
         let mut lowest = start;
@@ -142,16 +149,7 @@ fn elastic_balls_without_gravity_keep_their_energy_and_momentum() {
 fn an_elastic_gas_under_gravity_keeps_its_energy() {
     let compute = compute();
     for (count, seed) in [(100, 2), (100, 5), (200, 3), (200, 8)] {
-        let mut config = empty_room(DVec3::new(8.0, 4.0, 8.0), count);
-        config.balls.restitution = 1.0;
-        config.room.restitution = 1.0;
-        config.balls.friction = 0.0;
-        config.room.friction = 0.0;
-        config.room.rolling_resistance = 0.0;
-        config.solver.bounce_threshold = 0.0;
-        config.balls.speed_min = 1.0;
-        config.balls.speed_max = 3.0;
-        config.balls.start_fill = 1.0;
+        let config = elastic_gas(count);
         let g = config.gravity;
         let (mut world, mut balls) = build(&compute, config, seed);
         // Kinetic and potential (from the floor, y = 0), in single precision's sum.
