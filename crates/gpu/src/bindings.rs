@@ -1,10 +1,13 @@
 //! The buffers every ball pass binds, in the order of their bindings in
-//! `shaders/common.wgsl`, and the one bind group that holds them.
+//! `step/common.wgsl`, and the one bind group that holds them.
 
-use crate::layout::{Body, Catch, EVENT_CAPACITY, SLOTS};
+use crate::layout::{Body, Catch, EVENT_CAPACITY, IMPACT_ROUNDS, SLOTS};
 
 /// Bindings in the group: the uniform and the storage buffers.
-pub const BINDINGS: u32 = 28;
+pub const BINDINGS: u32 = 30;
+
+/// Bytes of the impact rounds' indirect dispatches: four words a round.
+pub const IMPACT_DISPATCH_BYTES: u64 = 16 * IMPACT_ROUNDS as u64;
 
 /// Each buffer, named by what it holds (see `common.wgsl`).
 pub struct Buffers {
@@ -36,6 +39,11 @@ pub struct Buffers {
     pub cell_speed: wgpu::Buffer,
     pub near_speed: wgpu::Buffer,
     pub slot_mirror: wgpu::Buffer,
+    pub impact_list: wgpu::Buffer,
+    pub impact_count: wgpu::Buffer,
+    /// Not in the group: bound to the passes that write it alone (see
+    /// `step/impacts.rs`).
+    pub impact_dispatch: wgpu::Buffer,
 }
 
 /// How many of each the buffers hold.
@@ -89,8 +97,8 @@ impl Buffers {
             vel: make("velocities", 16 * n, kept),
             spin: make("spins", 16 * n, kept),
             vel_start: make("velocities at the step's start", 16 * n, U::STORAGE),
-            delta: make("sweep changes", 16 * n, U::STORAGE),
-            delta_spin: make("sweep spin changes", 16 * n, U::STORAGE),
+            delta: make("second copy of the velocities", 16 * n, U::STORAGE),
+            delta_spin: make("second copy of the spins", 16 * n, U::STORAGE),
             state: make("states", 4 * n, kept),
             cell_of: make("cell of each ball", 4 * n, U::STORAGE),
             cell_start: make(
@@ -132,6 +140,17 @@ impl Buffers {
             cell_speed: make("fastest in each cell", 4 * (sizes.cells + 1), U::STORAGE),
             near_speed: make("fastest near each ball", 4 * n, U::STORAGE),
             slot_mirror: make("contact mirrors", 4 * SLOTS * n, U::STORAGE),
+            impact_list: make("balls that bounce", 4 * n, U::STORAGE),
+            impact_count: make(
+                "balls that bounce in each round",
+                4 * u64::from(IMPACT_ROUNDS),
+                U::STORAGE | U::COPY_DST,
+            ),
+            impact_dispatch: make(
+                "impact sweeps' dispatches",
+                IMPACT_DISPATCH_BYTES,
+                U::STORAGE | U::INDIRECT | U::COPY_DST,
+            ),
         }
     }
 
@@ -166,6 +185,8 @@ impl Buffers {
             &self.cell_speed,
             &self.near_speed,
             &self.slot_mirror,
+            &self.impact_list,
+            &self.impact_count,
         ]
     }
 

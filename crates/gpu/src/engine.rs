@@ -3,33 +3,49 @@
 
 use crate::GpuError;
 use crate::bindings::{Buffers, Sizes};
-use crate::colours::{COLOURS, CellColours};
-use crate::device::{STORAGE_BUFFERS, describe};
-use crate::layout::{Body, Catch, EVENT_CAPACITY, FIREBALL, MAX_ITEMS, Params, groups};
-use crate::passes::{Passes, SweepCounts};
-use crate::profile::{Stage, StageTimer};
+use crate::device::describe;
+use crate::layout::{
+    Body, Catch, EVENT_CAPACITY, FIREBALL, IMPACT_DISPATCH_START, IMPACT_ROUNDS, Params,
+};
+use crate::profile::StageTimer;
 use crate::readback::read_buffer;
-use crate::scan::Scan;
+use crate::step::{Stages, SweepCounts};
 use crate::wait::WaitBound;
 use glam::{DVec3, Vec3};
 use rolypoly_physics::{Balls, Event, EventKind, Tint, World};
 
+mod ball_state;
+mod limits;
+mod palette;
 mod snapshot;
+
+pub use ball_state::BallState;
+use limits::check_limits;
+use palette::PaletteLayout;
 pub use snapshot::GpuSnapshot;
 
 /// Thrown balls a run can add on top of its scene's.
 pub const THROW_ROOM: u64 = 1024;
-/// Impact rounds (see `impacts.wgsl`): a ball struck in one round strikes
-/// its neighbour in the next.
-const ROUNDS: u32 = 3;
 /// Jacobi sweeps of each impact round.
 const SWEEPS_PER_ROUND: u32 = 12;
 /// Balls nearer than this, in the largest ball's radii, are solved
 /// together whether or not they close at the step's start: a ball struck
 /// into its neighbour within the step must meet it.
 const REACH_RADII: f64 = 0.25;
+/// The solver's Jacobi sweeps for each of the scene's solver iterations
+/// (Gauss-Seidel sweeps, on the CPU engine): a Jacobi sweep passes a push
+/// one contact on where a Gauss-Seidel sweep may pass it down a column, and
+/// a pile landing at the bench's step sinks twice as deep at half as many.
+const JACOBI_SWEEPS_PER_ITERATION: u32 = 4;
 /// Sweeps that push overlapping balls apart after they move.
 const SHIFT_SWEEPS: u32 = 16;
+// Jacobi sweeps alternate between two copies and must end in the first
+// (see `vel_in` in `common.wgsl`).
+const _: () = assert!(
+    SWEEPS_PER_ROUND.is_multiple_of(2)
+        && SHIFT_SWEEPS.is_multiple_of(2)
+        && JACOBI_SWEEPS_PER_ITERATION.is_multiple_of(2)
+);
 /// Worlds of up to this many balls sweep in one workgroup (see
 /// `small.wgsl`), where the dispatches would cost more than their work.
 const SMALL_WORLD_BALLS: u32 = 1024;
@@ -42,102 +58,6 @@ const MARGIN_RADII: f64 = 0.01;
 /// radius in a step is found.
 const CELL_RADII: f64 = 3.0;
 
-/// The balls as read back: one entry per ball, thrown ones included.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct BallState {
-    /// Centres (m).
-    pub positions: Vec<Vec3>,
-    /// Velocities (m/s).
-    pub velocities: Vec<Vec3>,
-    /// Angular velocities (rad/s).
-    pub spins: Vec<Vec3>,
-    /// Radii (m).
-    pub radii: Vec<f32>,
-    /// Inverse masses (1/kg).
-    pub inverse_masses: Vec<f32>,
-    /// Whether each is still in play (not caught by the fireball).
-    pub alive: Vec<bool>,
-    /// The colour each shows.
-    pub colors: Vec<[f32; 3]>,
-    /// What each took its colour from.
-    pub tints: Vec<Tint>,
-}
-
-impl BallState {
-    /// Kinetic energy of the live balls, moving and turning (J).
-    pub fn kinetic_energy(&self) -> f64 {
-        (0..self.positions.len())
-            .filter(|&i| self.alive[i])
-            .map(|i| {
-                let m = 1.0 / f64::from(self.inverse_masses[i]);
-                let r = f64::from(self.radii[i]);
-                let inertia = 0.4 * m * r * r;
-                0.5 * m * self.velocities[i].as_dvec3().length_squared()
-                    + 0.5 * inertia * self.spins[i].as_dvec3().length_squared()
-            })
-            .sum()
-    }
-
-    /// The balls as the CPU engine keeps them (see [`World::put_balls`]).
-    pub fn to_balls(&self) -> Balls {
-        let vectors = |v: &[Vec3]| v.iter().map(|v| v.as_dvec3()).collect();
-        Balls::from_parts(
-            vectors(&self.positions),
-            vectors(&self.velocities),
-            vectors(&self.spins),
-            self.radii.iter().map(|&r| f64::from(r)).collect(),
-            self.inverse_masses
-                .iter()
-                .map(|&m| 1.0 / f64::from(m))
-                .collect(),
-            self.tints.clone(),
-            self.alive.clone(),
-        )
-    }
-
-    /// Total momentum of the live balls (N s).
-    pub fn momentum(&self) -> DVec3 {
-        (0..self.positions.len())
-            .filter(|&i| self.alive[i])
-            .map(|i| self.velocities[i].as_dvec3() / f64::from(self.inverse_masses[i]))
-            .sum()
-    }
-}
-
-/// Where each kind of colour starts in the palette.
-#[derive(Clone, Copy, Debug)]
-struct PaletteLayout {
-    tumblers: u32,
-    placed: u32,
-}
-
-impl PaletteLayout {
-    /// White first, then the six surfaces, the tumblers, the placed balls.
-    const SURFACES: u32 = 1;
-
-    fn index(self, tint: Tint) -> u32 {
-        match tint {
-            Tint::White => 0,
-            Tint::Surface(s) => Self::SURFACES + s.index() as u32,
-            Tint::Tumbler(t) => self.tumblers + t as u32,
-            Tint::Placed(k) => self.placed + k as u32,
-        }
-    }
-
-    fn tint(self, index: u32) -> Tint {
-        let surfaces = Self::SURFACES..Self::SURFACES + 6;
-        if surfaces.contains(&index) {
-            Tint::Surface(rolypoly_physics::Surface::ALL[(index - Self::SURFACES) as usize])
-        } else if (self.tumblers..self.placed).contains(&index) {
-            Tint::Tumbler((index - self.tumblers) as usize)
-        } else if index >= self.placed {
-            Tint::Placed((index - self.placed) as usize)
-        } else {
-            Tint::White
-        }
-    }
-}
-
 /// The balls of a world, simulated on the GPU. The world keeps its
 /// tumblers and fireball and steps them itself; each step the balls meet
 /// them where the world has put them, and push them back (see
@@ -149,17 +69,13 @@ pub struct GpuBalls {
     wait: WaitBound,
     buffers: Buffers,
     bind_group: wgpu::BindGroup,
-    passes: Passes,
-    colours: CellColours,
-    scan: Scan,
+    stages: Stages,
     params: Params,
     /// Balls the buffers hold room for.
     capacity: u64,
-    cells: u64,
     tumblers: usize,
     palette: Vec<[f32; 4]>,
     palette_layout: PaletteLayout,
-    sweeps: SweepCounts,
     /// Worlds of up to this many balls sweep in one workgroup.
     small_world_balls: u32,
     /// The small buffer the step's pushes and catches come back in.
@@ -235,15 +151,12 @@ impl GpuBalls {
         let layout = Buffers::layout(&device);
         let buffers = Buffers::new(&device, &sizes);
         let bind_group = buffers.bind_group(&device, &layout);
-        let colours = CellColours::new(&device, [dims.x as u32, dims.y as u32, dims.z as u32]);
         let sweeps = SweepCounts {
-            impact_rounds: ROUNDS,
             impact_sweeps: SWEEPS_PER_ROUND,
-            solve_sweeps: config.solver.iterations.max(1) as u32,
+            solve_sweeps: JACOBI_SWEEPS_PER_ITERATION * config.solver.iterations.max(1) as u32,
             shift_sweeps: SHIFT_SWEEPS,
         };
-        let passes = Passes::new(&device, &layout, &colours.layout, &sweeps);
-        let scan = Scan::new(&device, &buffers.cell_start, cells + 1);
+        let stages = Stages::new(&device, &buffers, &layout, cells, &sweeps);
 
         let palette_layout = PaletteLayout {
             tumblers: 7,
@@ -320,16 +233,12 @@ impl GpuBalls {
             wait: WaitBound::new(adapter),
             buffers,
             bind_group,
-            passes,
-            colours,
-            scan,
+            stages,
             params,
             capacity,
-            cells,
             tumblers,
             palette,
             palette_layout,
-            sweeps,
             small_world_balls: SMALL_WORLD_BALLS,
             report,
             catches: Vec::new(),
@@ -375,6 +284,20 @@ impl GpuBalls {
     /// time, however few the balls.
     pub fn dispatches_per_step(&self) -> u32 {
         self.dispatches
+    }
+
+    /// How many balls each impact round of the last step listed as
+    /// bouncing, and so swept (see `step/impacts.rs`); none in a world
+    /// that sweeps in one workgroup, which sweeps every ball. For tests and
+    /// the bench: it waits for the GPU.
+    pub fn impact_lists(&self) -> Result<[u32; IMPACT_ROUNDS as usize], GpuError> {
+        let bytes = self.copy_back(
+            &self.buffers.impact_count,
+            4 * u64::from(IMPACT_ROUNDS),
+            || format!("the gpu engine's step {} (its impact lists)", self.steps),
+        )?;
+        let counts: Vec<u32> = bytemuck::pod_collect_to_vec(&bytes);
+        Ok(std::array::from_fn(|round| counts[round]))
     }
 
     /// What the renderer draws: each ball's centre and radius, then colour
@@ -531,8 +454,26 @@ impl GpuBalls {
         if catching {
             q.write_buffer(&self.buffers.event_count, 0, &[0; 4]);
         }
+        let dispatch_start = [IMPACT_DISPATCH_START; IMPACT_ROUNDS as usize];
+        q.write_buffer(
+            &self.buffers.impact_dispatch,
+            0,
+            bytemuck::cast_slice(&dispatch_start),
+        );
+        q.write_buffer(
+            &self.buffers.impact_count,
+            0,
+            bytemuck::cast_slice(&[0u32; IMPACT_ROUNDS as usize]),
+        );
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        self.dispatches = self.record_step(&mut encoder, timer);
+        self.dispatches = self.stages.record(
+            &mut encoder,
+            &self.bind_group,
+            timer,
+            u64::from(self.params.count),
+            self.tumblers as u32,
+            self.params.count <= self.small_world_balls,
+        );
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
         }
@@ -555,126 +496,6 @@ impl GpuBalls {
             self.take_report(world)?;
         }
         Ok(())
-    }
-
-    /// Records one step's passes into `encoder`, a compute pass a stage
-    /// (see [`Stage`]), each stamped by `timer` if given; returns the
-    /// dispatches recorded.
-    fn record_step(&self, encoder: &mut wgpu::CommandEncoder, timer: Option<&StageTimer>) -> u32 {
-        let balls = u64::from(self.params.count);
-        let recorded = std::cell::Cell::new(0u32);
-        let count = || recorded.set(recorded.get() + 1);
-        let p = &self.passes;
-        let pass = |encoder: &mut wgpu::CommandEncoder,
-                    stage: Stage,
-                    work: &mut dyn FnMut(&mut wgpu::ComputePass)| {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(stage.name()),
-                timestamp_writes: timer.map(|t| t.writes(stage)),
-            });
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            work(&mut pass);
-        };
-        let dispatch =
-            |pass: &mut wgpu::ComputePass, pipeline: &wgpu::ComputePipeline, items: u64| {
-                pass.set_pipeline(pipeline);
-                let (x, y) = groups(items);
-                pass.dispatch_workgroups(x, y, 1);
-                count();
-            };
-        // The grid: count, scan, place, sort; its stamp spans all four.
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("count balls by cell"),
-                timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
-                    end_of_pass_write_index: None,
-                    ..t.writes(Stage::Grid)
-                }),
-            });
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            dispatch(&mut pass, &p.clear_cells, self.cells + 1);
-            dispatch(&mut pass, &p.count_cells, balls);
-        }
-        encoder.copy_buffer_to_buffer(
-            &self.buffers.cell_fill,
-            0,
-            &self.buffers.cell_start,
-            0,
-            4 * (self.cells + 1),
-        );
-        recorded.set(recorded.get() + self.scan.record(encoder));
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("place balls in cells"),
-                timestamp_writes: timer.map(|t| wgpu::ComputePassTimestampWrites {
-                    beginning_of_pass_write_index: None,
-                    ..t.writes(Stage::Grid)
-                }),
-            });
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            dispatch(&mut pass, &p.clear_cells, self.cells + 1);
-            dispatch(&mut pass, &p.place_in_cells, balls);
-            dispatch(&mut pass, &p.sort_cells, self.cells);
-        }
-        pass(encoder, Stage::Contacts, &mut |pass| {
-            dispatch(pass, &p.gauge_near_speed, balls);
-            dispatch(pass, &p.find_contacts, balls);
-            dispatch(pass, &p.find_mirrors, balls)
-        });
-        let small = self.params.count <= self.small_world_balls;
-        let in_one_group = |pass: &mut wgpu::ComputePass, pipeline: &wgpu::ComputePipeline| {
-            pass.set_pipeline(pipeline);
-            pass.dispatch_workgroups(1, 1, 1);
-            count();
-        };
-        let counts = &self.sweeps;
-        pass(encoder, Stage::Impacts, &mut |pass| {
-            if small {
-                return in_one_group(pass, &p.impacts_in_one_group);
-            }
-            for _ in 0..counts.impact_rounds {
-                dispatch(pass, &p.raise_impact_goals, balls);
-                for _ in 0..counts.impact_sweeps {
-                    dispatch(pass, &p.solve_impacts, balls);
-                    dispatch(pass, &p.apply_deltas, balls);
-                }
-            }
-        });
-        pass(encoder, Stage::Solve, &mut |pass| {
-            dispatch(pass, &p.warm_start, balls);
-            if small {
-                return in_one_group(pass, &p.solve_in_one_group);
-            }
-            for _ in 0..counts.solve_sweeps {
-                for q in 0..COLOURS {
-                    self.colours.bind(pass, q);
-                    dispatch(pass, &p.solve_cell, self.colours.cells_per_colour);
-                }
-            }
-        });
-        pass(encoder, Stage::Push, &mut |pass| {
-            if self.tumblers > 0 {
-                pass.set_pipeline(&p.sum_tumbler_push);
-                pass.dispatch_workgroups(self.tumblers as u32, 1, 1);
-                count();
-            }
-        });
-        pass(encoder, Stage::Flight, &mut |pass| {
-            dispatch(pass, &p.fly, balls)
-        });
-        pass(encoder, Stage::Overlaps, &mut |pass| {
-            if small {
-                return in_one_group(pass, &p.overlaps_in_one_group);
-            }
-            for _ in 0..counts.shift_sweeps {
-                dispatch(pass, &p.find_overlaps, balls);
-                dispatch(pass, &p.apply_shifts, balls);
-            }
-        });
-        pass(encoder, Stage::Instances, &mut |pass| {
-            dispatch(pass, &p.write_instances, balls)
-        });
-        recorded.get()
     }
 
     /// Steps `steps` times with each stage timed on the GPU, and returns
@@ -723,13 +544,8 @@ impl GpuBalls {
         self.queue
             .write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&self.params));
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&Default::default());
-            pass.set_bind_group(0, &self.bind_group, &[]);
-            pass.set_pipeline(&self.passes.write_instances);
-            let (x, y) = groups(u64::from(self.params.count));
-            pass.dispatch_workgroups(x, y, 1);
-        }
+        self.stages
+            .write_instances(&mut encoder, &self.bind_group, u64::from(self.params.count));
         self.queue.submit([encoder.finish()]);
     }
 
@@ -850,91 +666,8 @@ impl GpuBalls {
     }
 }
 
-/// Whether a device of `limits` holds buffers of `sizes`; else the
-/// first limit that is too small, named.
-fn check_limits(limits: &wgpu::Limits, sizes: &Sizes, adapter: &str) -> Result<(), GpuError> {
-    let limit = |what, need: u64, have: u64| {
-        if need > have {
-            Err(GpuError::Limit {
-                adapter: adapter.to_owned(),
-                what,
-                need,
-                have,
-            })
-        } else {
-            Ok(())
-        }
-    };
-    limit(
-        "storage buffers per shader stage",
-        u64::from(STORAGE_BUFFERS),
-        u64::from(limits.max_storage_buffers_per_shader_stage),
-    )?;
-    limit(
-        "buffers per shader stage",
-        u64::from(crate::bindings::BINDINGS),
-        u64::from(limits.max_buffers_and_acceleration_structures_per_shader_stage),
-    )?;
-    limit(
-        "a storage buffer binding size (bytes)",
-        sizes.largest_buffer(),
-        limits.max_storage_buffer_binding_size,
-    )?;
-    limit(
-        "a buffer size (bytes)",
-        sizes.largest_buffer(),
-        limits.max_buffer_size,
-    )?;
-    limit(
-        "grid cells",
-        sizes.cells + 1,
-        MAX_ITEMS.min(u64::from(u32::MAX)),
-    )?;
-    limit("balls", sizes.balls, MAX_ITEMS)
-}
-
 /// Bytes of the step report: two vectors a tumbler, the catch count
 /// (padded to 16), the catches.
 fn report_size(tumblers: usize) -> u64 {
     32 * tumblers as u64 + 16 + EVENT_CAPACITY * std::mem::size_of::<Catch>() as u64
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_limit_too_small_for_the_scene_is_named_with_what_it_needs() {
-        let sizes = |balls| Sizes {
-            balls,
-            cells: 1000,
-            bodies: 1,
-            tumblers: 0,
-            colors: 7,
-        };
-        let roomy = wgpu::Limits {
-            max_storage_buffers_per_shader_stage: 32,
-            max_buffers_and_acceleration_structures_per_shader_stage: 32,
-            max_storage_buffer_binding_size: 1 << 28,
-            max_buffer_size: 1 << 31,
-            ..wgpu::Limits::default()
-        };
-        assert!(check_limits(&roomy, &sizes(1_000_000), "test").is_ok());
-        // WebGL-class limits have no storage buffers at all.
-        let err = check_limits(
-            &wgpu::Limits::downlevel_webgl2_defaults(),
-            &sizes(10),
-            "test",
-        )
-        .unwrap_err()
-        .to_string();
-        assert!(err.contains("storage buffers per shader stage"), "{err}");
-        assert!(err.contains("--engine cpu"), "{err}");
-        // 256 MiB bindings hold a million balls' contacts, not two million.
-        let err = check_limits(&roomy, &sizes(2_000_000), "test")
-            .unwrap_err()
-            .to_string();
-        assert!(err.contains("storage buffer binding size"), "{err}");
-        assert!(err.contains("384000000"), "{err}");
-    }
 }

@@ -1,5 +1,5 @@
 //! The data the ball passes share with the CPU, laid out as the WGSL in
-//! `shaders/common.wgsl` declares it, and how work is split into
+//! `step/common.wgsl` declares it, and how work is split into
 //! workgroups.
 
 use bytemuck::{Pod, Zeroable};
@@ -19,6 +19,12 @@ pub const MAX_ITEMS: u64 = MAX_GROUPS as u64 * MAX_GROUPS as u64 * WORKGROUP as 
 /// The body number that means the fireball (`FIREBALL`).
 pub const FIREBALL: u32 = 0xffff;
 /// Catches reported in one step at most (`events`' length).
+/// Impact rounds (see `impacts.wgsl`): a ball struck in one round strikes
+/// its neighbour in the next.
+pub const IMPACT_ROUNDS: u32 = 3;
+/// What each round's indirect dispatch starts a step as: no workgroups
+/// along x (one along y and z), and an empty list.
+pub const IMPACT_DISPATCH_START: [u32; 4] = [0, 1, 1, 0];
 pub const EVENT_CAPACITY: u64 = 1024;
 
 /// `Params` in the WGSL: the step's constants.

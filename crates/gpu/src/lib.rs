@@ -1,8 +1,8 @@
 //! The rolypoly balls on the GPU: WGSL compute shaders through wgpu, on any
 //! adapter with compute shaders (Vulkan, Metal, DX12; lavapipe in tests).
 //!
-//! A step, in the order it runs (each pass is a WGSL file in `shaders/`
-//! beside the Rust that drives it):
+//! A step, in the order it runs (each stage a module of `step/` with its
+//! WGSL file beside it):
 //! 1. **grid**: each ball's cell is counted, the counts are scanned
 //!    (`scan`), the balls placed, and each cell's list sorted by ball
 //!    number, so that every later pass walks the same lists in the same
@@ -11,21 +11,21 @@
 //!    nearest tumbler sphere, the nearest walls; the fireball takes the
 //!    balls it reaches, if the scene says so;
 //! 3. **impacts**: rounds of Jacobi sweeps of bounces, so a blow passes
-//!    from ball to ball within the step;
-//! 4. **solve**: Gauss-Seidel sweeps of impulses, normal and friction, run
-//!    in 27 passes, one for each colour of cell (`colours`): cells three
-//!    apart share no ball, so their threads never write the same one, and
-//!    there are no float atomics;
+//!    from ball to ball within the step, each round's sweeps dispatched
+//!    over the balls that bounce in it, as many as the GPU counted;
+//! 4. **solve**: Jacobi sweeps of impulses, normal and friction, with mass
+//!    splitting, a thread a ball; both balls of a contact work it out
+//!    alike, so there are no float atomics;
 //! 5. **report**: the tumblers' pushes, summed in a fixed order;
 //! 6. **flight**: balls a contact held move at their solved velocity,
 //!    others along their exact parabola, bouncing exactly off the walls;
-//! 7. **project**: overlaps pushed out by position;
+//! 7. **overlaps**: pushed out by position;
 //! 8. the renderer's ball instances written, on the GPU.
 //!
-//! Each sweep of stages 3, 4 and 7 is a dispatch of its own, some three
-//! hundred a step; a world of up to 1024 balls runs each of those stages
-//! in one workgroup instead, with barriers between its sweeps
-//! (`small.wgsl`): the same sweeps, to rounding.
+//! Each sweep of stages 3, 4 and 7 is a dispatch of its own, reading one
+//! copy of what it changes and writing the other; a world of up to 1024
+//! balls runs each of those stages in one workgroup instead, with
+//! barriers between its sweeps: the same sweeps, to rounding.
 //!
 //! The same scene, seed and inputs give the same bits on rerun on the same
 //! adapter and driver.
@@ -33,15 +33,13 @@
 #![warn(missing_docs)]
 
 mod bindings;
-mod colours;
 mod device;
 mod engine;
 mod error;
 mod layout;
-mod passes;
 mod profile;
 mod readback;
-mod scan;
+mod step;
 mod wait;
 
 pub use device::{Compute, best_adapter, check_compute, describe, limits};

@@ -15,7 +15,7 @@ pub enum Stage {
     Contacts,
     /// The impact rounds.
     Impacts,
-    /// The contact solver's Gauss-Seidel sweeps.
+    /// The warm start and the contact solver's Jacobi sweeps.
     Solve,
     /// The tumblers' pushes summed.
     Push,

@@ -144,6 +144,45 @@ fn a_steps_dispatches_are_counted_and_do_not_grow_with_the_balls() {
     // Ten times the balls: the same passes, but for the grid's scan, one
     // level (two dispatches) more for each 256-fold of cells.
     assert!(many >= some && many <= some + 2, "{some} then {many}");
+    // A sweep is one dispatch, not one for each of 27 colours of cell
+    // (337 a step that way).
+    assert!(many < 120, "{many} dispatches a step");
+}
+
+#[test]
+fn impacts_sweep_the_balls_that_bounce_and_none_at_rest() {
+    let compute = compute();
+    for (count, side, seed) in [(300, 2.0, 1), (700, 3.0, 6)] {
+        let mut config = empty_room(DVec3::new(side, 2.0, side), count);
+        config.balls.radius = 0.1;
+        config.balls.friction = 0.5;
+        config.balls.start_fill = 0.6;
+        let (mut world, mut balls) = build(&compute, config, seed);
+        // Swept in many dispatches, as a large world is, over the lists.
+        balls.sweep_in_one_group_up_to(0);
+        let mut most = [0u32; 3];
+        for _ in 0..60 {
+            step(&mut world, &mut balls);
+            let lists = balls.impact_lists().unwrap();
+            for (m, l) in most.iter_mut().zip(lists) {
+                *m = (*m).max(l);
+            }
+            assert!(lists.iter().all(|&l| l as usize <= count), "{lists:?}");
+        }
+        // The fall: balls land on the floor and on each other, and a blow
+        // passes on in the later rounds.
+        assert!(most[0] > 0 && most[1] > 0, "{count} balls: {most:?}");
+        for _ in 60..1200 {
+            step(&mut world, &mut balls);
+        }
+        let state = balls.read().unwrap();
+        assert!(share_at_rest(&state, 0.05) > 0.99, "{count} balls");
+        assert_eq!(
+            balls.impact_lists().unwrap(),
+            [0; 3],
+            "{count} balls at rest"
+        );
+    }
 }
 
 /// The largest change of velocity between two states of the same balls.

@@ -2,6 +2,16 @@
 // in one bind group (see `bindings.rs`, which lists them in this order).
 
 const WORKGROUP: u32 = 256u;
+// A world of few balls runs each sweeping stage (the impacts, the solver,
+// the overlaps) as one dispatch of one workgroup of this many threads,
+// each taking every SMALL_GROUP-th ball, with a barrier where a large
+// world ends a dispatch: the same sweeps, to rounding. Some hundred
+// dispatches a step cost a small world more than their work. The sweep
+// counts (IMPACT_ROUNDS, IMPACT_SWEEPS, SOLVE_SWEEPS, SHIFT_SWEEPS) are
+// written above this file by the stage that runs them.
+const SMALL_GROUP: u32 = 64u;
+// Workgroups a dispatch may have along x; more spill into y.
+const MAX_GROUPS: u32 = 65535u;
 // SLOTS, the contacts a ball keeps with other balls in one step (its
 // nearest), is written above this file from `layout.rs`.
 const NONE: u32 = 0xffffffffu;
@@ -79,7 +89,8 @@ struct Event {
 @group(0) @binding(3) var<storage, read_write> spin: array<vec4<f32>>;
 // The velocity at the start of the step.
 @group(0) @binding(4) var<storage, read_write> vel_start: array<vec4<f32>>;
-// A Jacobi sweep's change of velocity (or of position), then of spin.
+// The second copy of the velocities (or of the positions), then of the
+// spins, that the Jacobi sweeps alternate with (see `vel_in`).
 @group(0) @binding(5) var<storage, read_write> delta: array<vec4<f32>>;
 @group(0) @binding(6) var<storage, read_write> delta_spin: array<vec4<f32>>;
 // See ALIVE, SOLVED.
@@ -123,6 +134,10 @@ struct Event {
 // For each contact slot, where its other ball keeps the same contact, or
 // NONE (see `find_mirrors`).
 @group(0) @binding(27) var<storage, read_write> slot_mirror: array<u32>;
+// The impacts' work list (see impacts.wgsl): the balls with a contact that
+// bounces this round, and how many it holds in each round.
+@group(0) @binding(28) var<storage, read_write> impact_list: array<u32>;
+@group(0) @binding(29) var<storage, read_write> impact_count: array<atomic<u32>>;
 
 // No bounce asked: any goal is larger.
 const NO_GOAL: f32 = -1e30;
@@ -145,7 +160,7 @@ fn pair_geometry(a: u32, b: u32) -> vec4<f32> {
 
 fn ball_index(id: vec3<u32>) -> u32 {
     // Dispatches wider than 65 535 workgroups spill into y.
-    return id.x + id.y * 65535u * WORKGROUP;
+    return id.x + id.y * MAX_GROUPS * WORKGROUP;
 }
 
 fn alive(i: u32) -> bool {
@@ -240,15 +255,11 @@ fn touches_wall(s: u32, axis: u32) -> bool {
     return ((s >> (WALL_SHIFT + axis)) & 1u) != 0u;
 }
 
-// How many contacts a ball's Jacobi sweep sums: its share of each is
-// this many times smaller, so that together they do not overshoot.
-fn contact_count(i: u32) -> u32 {
-    let s = state[i];
-    var n = slot_count(s) + countOneBits((s >> WALL_SHIFT) & 7u);
-    if body_of[i] != NONE {
-        n += 1u;
-    }
-    return max(n, 1u);
+// How many ways ball i's mass is split in the solver's and the overlaps'
+// Jacobi sweeps (mass splitting, see solve.wgsl): among the contacts that
+// may push within the step, as `warm_start` counted them.
+fn solve_shares(i: u32) -> f32 {
+    return f32(max((state[i] >> IMPACT_SHIFT) & 31u, 1u));
 }
 
 // How easily a push along `n` at `point` moves body `b` there: the inverse
@@ -275,4 +286,56 @@ fn fold_body_impact(i: u32) {
     let done = own_impact[2u * i + 1u];
     body_impulse[i].x += done.w;
     own_impact[2u * i + 1u] = vec4<f32>(0.0);
+}
+
+// A stage's Jacobi sweeps alternate between two copies of what they
+// change: each sweep reads the copy the last one wrote and writes the
+// other, so one dispatch is one sweep, no ball sees a neighbour half-way
+// through one, and the result does not hang on the order threads run in.
+// A forth sweep reads the first copy (`vel`, `spin`, `pos`) and writes the
+// second (`delta`, `delta_spin`); a back sweep, the other way. Stages
+// sweep an even number of times, so that they end in the first copy.
+fn vel_in(i: u32, back: bool) -> vec4<f32> {
+    if back {
+        return delta[i];
+    }
+    return vel[i];
+}
+
+fn spin_in(i: u32, back: bool) -> vec4<f32> {
+    if back {
+        return delta_spin[i];
+    }
+    return spin[i];
+}
+
+fn pos_in(i: u32, back: bool) -> vec4<f32> {
+    if back {
+        return delta[i];
+    }
+    return pos[i];
+}
+
+fn put_vel(i: u32, back: bool, v: vec4<f32>) {
+    if back {
+        vel[i] = v;
+    } else {
+        delta[i] = v;
+    }
+}
+
+fn put_spin(i: u32, back: bool, w: vec4<f32>) {
+    if back {
+        spin[i] = w;
+    } else {
+        delta_spin[i] = w;
+    }
+}
+
+fn put_pos(i: u32, back: bool, p: vec4<f32>) {
+    if back {
+        pos[i] = p;
+    } else {
+        delta[i] = p;
+    }
 }

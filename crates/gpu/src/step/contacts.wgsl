@@ -3,8 +3,7 @@
 // same every run), the nearest body, the nearest walls. The fireball, when
 // it takes balls, takes those it reaches here. A contact kept from the
 // last step starts from the impulse it ended that step with (the warm
-// start), which `warm_start` then applies, with gravity, to the velocities
-// the solver corrects.
+// start, see `warm_start` in solve.wgsl).
 
 // The fastest ball near each: a blow passed down a column within the step
 // can set a ball moving at the speed of the fastest ball around it.
@@ -212,7 +211,7 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 // Where each contact's other ball keeps it, found once a step for the
-// warm start and every sweep: a ball whose list is full may leave out one
+// warm start and the sweeps: a ball whose list is full may leave out one
 // that lists it, and such a one-sided contact is left to the overlap
 // sweeps.
 @compute @workgroup_size(256)
@@ -231,51 +230,11 @@ fn find_mirrors(@builtin(global_invocation_id) id: vec3<u32>) {
             }
         }
         slot_mirror[i * SLOTS + k] = mirror;
-    }
-}
-
-// After the impacts, gravity and each ball's contacts' warm impulses are
-// given to its velocity. A ball reads only its own contacts here.
-@compute @workgroup_size(256)
-fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
-    if i >= params.count || !alive(i) {
-        return;
-    }
-    let p = pos[i].xyz;
-    let r = pos[i].w;
-    let im = vel[i].w;
-    var dv = gravity() * dt();
-    var dw = vec3<f32>(0.0);
-    if (state[i] & SOLVED) != 0u {
-        fold_body_impact(i);
-        for (var k = 0u; k < slot_count(state[i]); k++) {
-            let j = slot_other[i * SLOTS + k];
-            if slot_mirror[i * SLOTS + k] == NONE {
-                continue;
-            }
-            let a = min(i, j);
-            let n = direction(pos[a].xyz - pos[i + j - a].xyz);
-            let total = slot_impulse[i * SLOTS + k];
-            let on_i = select(-1.0, 1.0, i == a) * (total.w * n + total.xyz);
-            dv += on_i * im;
-            dw += cross(r * direction(pos[j].xyz - p), on_i) * inv_inertia(im, r);
-        }
-        for (var axis = 0u; axis < 3u; axis++) {
-            if touches_wall(state[i], axis) {
-                let n = nearest_wall(p, r, axis).xyz;
-                let total = wall_impulse[i * 3u + axis];
-                let on_i = total.w * n + total.xyz;
-                dv += on_i * im;
-                dw += cross(-r * n, on_i) * inv_inertia(im, r);
-            }
-        }
-        let b = body_of[i];
-        if b != NONE {
-            let n = direction(p - bodies[b].sphere.xyz);
-            dv += body_impulse[i].w * n * im;
+        // Both balls of a contact start the solver from the same impulse
+        // (see solve.wgsl): the lower-numbered ball's, which only its
+        // own thread writes, and not here.
+        if mirror != NONE && j < i {
+            slot_impulse[i * SLOTS + k] = slot_impulse[mirror];
         }
     }
-    vel[i] = vec4<f32>(vel[i].xyz + dv, im);
-    spin[i] = vec4<f32>(spin[i].xyz + dw, 0.0);
 }

@@ -1,4 +1,4 @@
-//! An exclusive prefix sum of `u32` on the GPU (`shaders/scan.wgsl`): each
+//! An exclusive prefix sum of `u32` on the GPU (`scan.wgsl`): each
 //! block of 256 is scanned in place, the blocks' totals are scanned a level
 //! up, and added back. Deterministic: integers, no atomics.
 
@@ -26,7 +26,7 @@ impl Scan {
     pub fn new(device: &wgpu::Device, values: &wgpu::Buffer, len: u64) -> Scan {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("scan"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("shaders/scan.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(include_str!("scan.wgsl").into()),
         });
         let storage = |binding| wgpu::BindGroupLayoutEntry {
             binding,

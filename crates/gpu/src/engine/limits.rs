@@ -1,0 +1,90 @@
+//! Whether a device can hold a scene's balls: its limits against the
+//! buffers' sizes, the first one too small named.
+
+use crate::GpuError;
+use crate::bindings::Sizes;
+use crate::device::STORAGE_BUFFERS;
+use crate::layout::MAX_ITEMS;
+
+/// Whether a device of `limits` holds buffers of `sizes`; else the
+/// first limit that is too small, named.
+pub fn check_limits(limits: &wgpu::Limits, sizes: &Sizes, adapter: &str) -> Result<(), GpuError> {
+    let limit = |what, need: u64, have: u64| {
+        if need > have {
+            Err(GpuError::Limit {
+                adapter: adapter.to_owned(),
+                what,
+                need,
+                have,
+            })
+        } else {
+            Ok(())
+        }
+    };
+    limit(
+        "storage buffers per shader stage",
+        u64::from(STORAGE_BUFFERS),
+        u64::from(limits.max_storage_buffers_per_shader_stage),
+    )?;
+    limit(
+        "buffers per shader stage",
+        u64::from(crate::bindings::BINDINGS),
+        u64::from(limits.max_buffers_and_acceleration_structures_per_shader_stage),
+    )?;
+    limit(
+        "a storage buffer binding size (bytes)",
+        sizes.largest_buffer(),
+        limits.max_storage_buffer_binding_size,
+    )?;
+    limit(
+        "a buffer size (bytes)",
+        sizes.largest_buffer(),
+        limits.max_buffer_size,
+    )?;
+    limit(
+        "grid cells",
+        sizes.cells + 1,
+        MAX_ITEMS.min(u64::from(u32::MAX)),
+    )?;
+    limit("balls", sizes.balls, MAX_ITEMS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_limit_too_small_for_the_scene_is_named_with_what_it_needs() {
+        let sizes = |balls| Sizes {
+            balls,
+            cells: 1000,
+            bodies: 1,
+            tumblers: 0,
+            colors: 7,
+        };
+        let roomy = wgpu::Limits {
+            max_storage_buffers_per_shader_stage: 32,
+            max_buffers_and_acceleration_structures_per_shader_stage: 32,
+            max_storage_buffer_binding_size: 1 << 28,
+            max_buffer_size: 1 << 31,
+            ..wgpu::Limits::default()
+        };
+        assert!(check_limits(&roomy, &sizes(1_000_000), "test").is_ok());
+        // WebGL-class limits have no storage buffers at all.
+        let err = check_limits(
+            &wgpu::Limits::downlevel_webgl2_defaults(),
+            &sizes(10),
+            "test",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("storage buffers per shader stage"), "{err}");
+        assert!(err.contains("--engine cpu"), "{err}");
+        // 256 MiB bindings hold a million balls' contacts, not two million.
+        let err = check_limits(&roomy, &sizes(2_000_000), "test")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("storage buffer binding size"), "{err}");
+        assert!(err.contains("384000000"), "{err}");
+    }
+}

@@ -1,0 +1,32 @@
+//! Stage 2, the contacts (`contacts.wgsl`): each ball keeps its nearest
+//! balls within reach, the nearest tumbler sphere and the nearest walls,
+//! kept contacts starting from last step's impulse; the fireball takes the
+//! balls it reaches, if the scene says so.
+
+use super::{Recorder, Shaders};
+use crate::profile::Stage;
+
+pub struct Contacts {
+    gauge_near_speed: wgpu::ComputePipeline,
+    find_contacts: wgpu::ComputePipeline,
+    find_mirrors: wgpu::ComputePipeline,
+}
+
+impl Contacts {
+    pub fn new(shaders: &Shaders) -> Contacts {
+        let module = shaders.module("contacts", &[], include_str!("contacts.wgsl"));
+        Contacts {
+            gauge_near_speed: shaders.pipeline(&module, "gauge_near_speed"),
+            find_contacts: shaders.pipeline(&module, "find_contacts"),
+            find_mirrors: shaders.pipeline(&module, "find_mirrors"),
+        }
+    }
+
+    pub fn record(&self, step: &mut Recorder) {
+        step.stage(Stage::Contacts, |pass| {
+            pass.over_balls(&self.gauge_near_speed);
+            pass.over_balls(&self.find_contacts);
+            pass.over_balls(&self.find_mirrors);
+        });
+    }
+}

@@ -1,0 +1,58 @@
+//! Stage 1, the grid (`grid.wgsl`): each ball's cell counted, the counts
+//! scanned into each cell's first place (`scan`), the balls placed, and
+//! each cell's list sorted by ball number, so that every later pass walks
+//! the same lists in the same order whatever order the atomics landed in.
+
+use super::scan::Scan;
+use super::{Recorder, Shaders, Stamps};
+use crate::bindings::Buffers;
+use crate::profile::Stage;
+
+pub struct Grid {
+    clear_cells: wgpu::ComputePipeline,
+    count_cells: wgpu::ComputePipeline,
+    place_in_cells: wgpu::ComputePipeline,
+    sort_cells: wgpu::ComputePipeline,
+    scan: Scan,
+    cells: u64,
+    /// The counts, and the buffer they are scanned in.
+    cell_fill: wgpu::Buffer,
+    cell_start: wgpu::Buffer,
+}
+
+impl Grid {
+    pub fn new(shaders: &Shaders, buffers: &Buffers, cells: u64) -> Grid {
+        let module = shaders.module("grid", &[], include_str!("grid.wgsl"));
+        Grid {
+            clear_cells: shaders.pipeline(&module, "clear_cells"),
+            count_cells: shaders.pipeline(&module, "count_cells"),
+            place_in_cells: shaders.pipeline(&module, "place_in_cells"),
+            sort_cells: shaders.pipeline(&module, "sort_cells"),
+            scan: Scan::new(shaders.device, &buffers.cell_start, cells + 1),
+            cells,
+            cell_fill: buffers.cell_fill.clone(),
+            cell_start: buffers.cell_start.clone(),
+        }
+    }
+
+    /// Two passes around the scan; the stage's stamps span all four parts.
+    pub fn record(&self, step: &mut Recorder) {
+        step.pass(Stage::Grid, Stamps::Start, |pass| {
+            pass.over(&self.clear_cells, self.cells + 1);
+            pass.over_balls(&self.count_cells);
+        });
+        step.encoder.copy_buffer_to_buffer(
+            &self.cell_fill,
+            0,
+            &self.cell_start,
+            0,
+            4 * (self.cells + 1),
+        );
+        step.dispatches += self.scan.record(step.encoder);
+        step.pass(Stage::Grid, Stamps::End, |pass| {
+            pass.over(&self.clear_cells, self.cells + 1);
+            pass.over_balls(&self.place_in_cells);
+            pass.over(&self.sort_cells, self.cells);
+        });
+    }
+}
