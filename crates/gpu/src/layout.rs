@@ -44,12 +44,14 @@ pub struct Params {
     pub grid: [f32; 4],
     /// Ball restitution and friction, wall restitution and friction.
     pub material: [f32; 4],
-    /// Wall rolling resistance, tumbler restitution, unused, relaxation.
+    /// Wall rolling resistance, tumbler restitution, reach, the impacts'
+    /// and overlaps' relaxation.
     pub more: [f32; 4],
     pub tumblers: u32,
     pub surface_colors: u32,
     pub step: u32,
-    pub _pad: u32,
+    /// The contact solver's over-relaxation.
+    pub solve_relaxation: f32,
 }
 
 /// `Body` in the WGSL: one sphere of a tumbler, or the fireball.

@@ -48,13 +48,14 @@ struct Params {
     material: vec4<f32>,
     // x: walls' rolling resistance; y: tumblers' restitution; z: the reach
     // within which balls are solved together even if they do not close (m);
-    // w: Jacobi relaxation.
+    // w: the impacts' and overlaps' Jacobi relaxation.
     more: vec4<f32>,
     // Tumblers whose pushes are summed; the palette's first surface colour.
     tumblers: u32,
     surface_colors: u32,
     step: u32,
-    _pad: u32,
+    // The contact solver's over-relaxation (see solve.wgsl).
+    solve_relaxation: f32,
 }
 
 struct Body {
@@ -255,11 +256,15 @@ fn touches_wall(s: u32, axis: u32) -> bool {
     return ((s >> (WALL_SHIFT + axis)) & 1u) != 0u;
 }
 
-// How many ways ball i's mass is split in the solver's and the overlaps'
-// Jacobi sweeps (mass splitting, see solve.wgsl): among the contacts that
-// may push within the step, as `warm_start` counted them.
-fn solve_shares(i: u32) -> f32 {
-    return f32(max((state[i] >> IMPACT_SHIFT) & 31u, 1u));
+// How many contacts a ball's overlap sweep sums: its share of each is
+// this many times smaller, so that together they do not overshoot.
+fn contact_count(i: u32) -> u32 {
+    let s = state[i];
+    var n = slot_count(s) + countOneBits((s >> WALL_SHIFT) & 7u);
+    if body_of[i] != NONE {
+        n += 1u;
+    }
+    return max(n, 1u);
 }
 
 // How easily a push along `n` at `point` moves body `b` there: the inverse

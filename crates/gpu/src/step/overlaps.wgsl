@@ -29,7 +29,7 @@ fn push_out_overlaps_of(i: u32, back: bool) {
     let p = me.xyz;
     let r = me.w;
     let im = vel[i].w;
-    let mine = solve_shares(i);
+    let mine = contact_count(i);
     let relax = params.more.w;
     let slop = params.grid.y;
     var shift = vec3<f32>(0.0);
@@ -46,7 +46,7 @@ fn push_out_overlaps_of(i: u32, back: bool) {
         if overlap <= 0.0 || dist <= 0.0 {
             continue;
         }
-        let share = relax / max(mine, solve_shares(j));
+        let share = relax / f32(max(mine, contact_count(j)));
         shift += d / dist * overlap * share * im / (im + vel[j].w);
     }
     let b = body_of[i];
@@ -55,7 +55,7 @@ fn push_out_overlaps_of(i: u32, back: bool) {
         let dist = length(d);
         let overlap = r + bodies[b].sphere.w - dist - slop;
         if overlap > 0.0 && dist > 0.0 {
-            shift += d / dist * overlap * relax / mine;
+            shift += d / dist * overlap * relax / f32(mine);
         }
     }
     let moved = clamp(p + shift, params.room_min.xyz + r, params.room_max.xyz - r);

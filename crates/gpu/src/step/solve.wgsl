@@ -7,22 +7,45 @@
 // ball works out every contact it has from the velocities the last sweep
 // left, and takes the sum of their pushes. Summed whole, pushes that each
 // fix their contact alone would overshoot where a ball has several, so
-// each contact is worked out as if each of its balls had only its share
-// of its mass, a share for each contact it has: mass splitting (Tonge,
-// Benevolenski and Voroshilov, "Mass splitting for jitter-free parallel
-// rigid body simulation", SIGGRAPH 2012). The sweeps then converge to the
-// same impulses as Gauss-Seidel's, and a pile rests without jitter. Both
-// balls of a contact work it out alike, from the same numbers in the same
-// order (the lower-numbered ball first), and keep the same impulse so
-// far, so what one gains the other loses to the bit.
+// each contact is worked out as if each of its balls had only a share of
+// its mass, one for each of its contacts that push: mass splitting
+// (Tonge, Benevolenski and Voroshilov, "Mass splitting for jitter-free
+// parallel rigid body simulation", SIGGRAPH 2012). The sweeps then
+// converge to the same impulses as Gauss-Seidel's, and a pile rests
+// without jitter; shares this cautious make each push small, so each is
+// over-relaxed (SOLVE_RELAXATION in `engine.rs`). Both balls of a contact
+// work it out alike, from the same numbers in the same order (the
+// lower-numbered ball first), and keep the same impulse so far, so what
+// one gains the other loses to the bit.
 
 // Balls' weights a tumbler may hold up through one ball.
 const BODY_WEIGHTS: f32 = 4.0;
 
-// Ball i's change of velocity (xyz) and of spin, from one contact.
+// How many ways ball i's mass is split in a sweep: among its contacts
+// that pushed in the sweep before (kept beside its spin), and never fewer
+// than those `warm_start` found may push within the step. A contact that
+// starts to push mid-step is counted from the next sweep on: one sweep
+// overshoots a little, and none after it (counted once at the step's
+// start, a pit of 10 000 balls landing blew up in its twentieth step).
+fn shares(i: u32, back: bool) -> f32 {
+    return max(f32(max((state[i] >> IMPACT_SHIFT) & 31u, 1u)), spin_in(i, back).w);
+}
+
+// How far past its own fix a contact whose balls' mass is split at most
+// `shares` ways is pushed: a lone contact is met exactly in one sweep, and
+// pushed further, it would leave a trace of a push where none belongs (a
+// ball in flight held to its solved velocity); among several, each push
+// is small, and over-relaxed.
+fn relaxation(shares: f32) -> f32 {
+    return select(params.solve_relaxation, 1.0, shares <= 1.0);
+}
+
+// Ball i's change of velocity and of spin, from its contacts, and how
+// many of them push.
 struct Push {
     velocity: vec3<f32>,
     spin: vec3<f32>,
+    pushing: f32,
 }
 
 // The contact of ball `i` kept in its slot `at`, with ball `j`.
@@ -37,7 +60,9 @@ fn solve_pair(i: u32, j: u32, at: u32, back: bool) -> Push {
     let n = direction(d);
     let goal = speculative_goal(length(d) - pa.w - pb.w);
     // Each ball's mass split among its contacts.
-    let k = solve_shares(a) * va.w + solve_shares(b) * vb.w;
+    let share_a = shares(a, back);
+    let share_b = shares(b, back);
+    let k = (share_a * va.w + share_b * vb.w) / relaxation(max(share_a, share_b));
     let total = slot_impulse[at];
     let normal = max(0.0, total.w + (goal - dot(va.xyz - vb.xyz, n)) / k);
     // The contact points' relative velocity, less its normal part: the slip.
@@ -49,10 +74,11 @@ fn solve_pair(i: u32, j: u32, at: u32, back: bool) -> Push {
     // On the lower-numbered ball; the other gets its opposite.
     let change = (normal - total.w) * n + (friction - total.xyz);
     let im = vel[i].w;
+    let pushing = select(0.0, 1.0, normal > 0.0);
     if i == a {
-        return Push(change * im, cross(-pa.w * n, change) * inv_inertia(im, pa.w));
+        return Push(change * im, cross(-pa.w * n, change) * inv_inertia(im, pa.w), pushing);
     }
-    return Push(-change * im, cross(pb.w * n, -change) * inv_inertia(im, pb.w));
+    return Push(-change * im, cross(pb.w * n, -change) * inv_inertia(im, pb.w), pushing);
 }
 
 // Ball i's contacts with the room's walls, at velocity `v` and spin `w`,
@@ -61,14 +87,14 @@ fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, shares: f32) -> Push {
     let p = pos[i].xyz;
     let r = pos[i].w;
     let im = vel[i].w;
-    var push = Push(vec3<f32>(0.0), vec3<f32>(0.0));
+    var push = Push(vec3<f32>(0.0), vec3<f32>(0.0), 0.0);
     for (var axis = 0u; axis < 3u; axis++) {
         if !touches_wall(state[i], axis) {
             continue;
         }
         let wall = nearest_wall(p, r, axis);
         let n = wall.xyz;
-        let k = shares * im;
+        let k = shares * im / relaxation(shares);
         let total = wall_impulse[i * 3u + axis];
         let goal = speculative_goal(wall.w);
         let normal = max(0.0, total.w + (goal - dot(v, n)) / k);
@@ -79,15 +105,16 @@ fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, shares: f32) -> Push {
         let change = (normal - total.w) * n + (friction - total.xyz);
         push.velocity += change * im;
         push.spin += cross(-r * n, change) * inv_inertia(im, r);
+        push.pushing += select(0.0, 1.0, normal > 0.0);
     }
     return push;
 }
 
 // Ball i's contact with a body, at velocity `v`, its mass split `shares` ways.
-fn solve_body(i: u32, v: vec3<f32>, shares: f32) -> vec3<f32> {
+fn solve_body(i: u32, v: vec3<f32>, shares: f32) -> Push {
     let b = body_of[i];
     if b == NONE {
-        return vec3<f32>(0.0);
+        return Push(vec3<f32>(0.0), vec3<f32>(0.0), 0.0);
     }
     let p = pos[i].xyz;
     let r = pos[i].w;
@@ -107,9 +134,10 @@ fn solve_body(i: u32, v: vec3<f32>, shares: f32) -> vec3<f32> {
     // a few balls' weight: a ball wedged between a tumbler and a wall
     // cannot be squeezed into an ever larger push back.
     let most = ((1.0 + params.more.y) * max(approach, 0.0) + BODY_WEIGHTS * params.room_max.w * dt()) / (im + body_im);
-    let normal = clamp(total.w + (goal - dot(v - vb, n)) / (shares * im + body_im), 0.0, most);
+    let k = (shares * im + body_im) / relaxation(shares);
+    let normal = clamp(total.w + (goal - dot(v - vb, n)) / k, 0.0, most);
     body_impulse[i] = vec4<f32>(total.x, 0.0, 0.0, normal);
-    return (normal - total.w) * n * im;
+    return Push((normal - total.w) * n * im, vec3<f32>(0.0), select(0.0, 1.0, normal > 0.0));
 }
 
 @compute @workgroup_size(256)
@@ -135,19 +163,22 @@ fn solve_ball(i: u32, back: bool) {
         put_spin(i, back, w);
         return;
     }
-    let shares = solve_shares(i);
-    var push = solve_walls(i, v.xyz, w.xyz, shares);
-    push.velocity += solve_body(i, v.xyz, shares);
+    let split = shares(i, back);
+    var push = solve_walls(i, v.xyz, w.xyz, split);
+    let body = solve_body(i, v.xyz, split);
+    push.velocity += body.velocity;
+    push.pushing += body.pushing;
     for (var k = 0u; k < slot_count(state[i]); k++) {
         let at = i * SLOTS + k;
         if slot_mirror[at] != NONE {
             let pair = solve_pair(i, slot_other[at], at, back);
             push.velocity += pair.velocity;
             push.spin += pair.spin;
+            push.pushing += pair.pushing;
         }
     }
     put_vel(i, back, vec4<f32>(v.xyz + push.velocity, v.w));
-    put_spin(i, back, vec4<f32>(w.xyz + push.spin, 0.0));
+    put_spin(i, back, vec4<f32>(w.xyz + push.spin, push.pushing));
 }
 
 // After the impacts, gravity and each ball's contacts' warm impulses are
@@ -171,12 +202,14 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
             if slot_mirror[i * SLOTS + k] == NONE {
                 continue;
             }
-            let d = p - pos[j].xyz;
-            let closing = max(0.0, -dot(vel_start[i].xyz - vel_start[j].xyz, direction(d)));
-            pressing += u32(length(d) - r - pos[j].w - closing * dt() < params.grid.y);
             let a = min(i, j);
             let n = direction(pos[a].xyz - pos[i + j - a].xyz);
             let total = slot_impulse[i * SLOTS + k];
+            // Pushing already, or closing on its margin within the step.
+            let d = p - pos[j].xyz;
+            let closing = max(0.0, -dot(vel_start[i].xyz - vel_start[j].xyz, direction(d)));
+            let gap = length(d) - r - pos[j].w;
+            pressing += u32(total.w > 0.0 || gap - closing * dt() < params.grid.y);
             let on_i = select(-1.0, 1.0, i == a) * (total.w * n + total.xyz);
             dv += on_i * im;
             dw += cross(r * direction(pos[j].xyz - p), on_i) * inv_inertia(im, r);
