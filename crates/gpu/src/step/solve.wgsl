@@ -21,12 +21,15 @@
 // Balls' weights a tumbler may hold up through one ball.
 const BODY_WEIGHTS: f32 = 4.0;
 
-// How many ways ball i's mass is split in a sweep: among its contacts
-// that pushed in the sweep before (kept beside its spin), and never fewer
-// than those `warm_start` found may push within the step. A contact that
-// starts to push mid-step is counted from the next sweep on: one sweep
-// overshoots a little, and none after it (counted once at the step's
-// start, a pit of 10 000 balls landing blew up in its twentieth step).
+// How many ways ball i's mass is split in a sweep: the most of its
+// contacts that pushed in any sweep of the step so far (kept beside its
+// spin), and never fewer than those `warm_start` found may push within
+// the step. A contact that starts to push mid-step is counted from the
+// next sweep on: one sweep overshoots a little, and none after it
+// (counted once at the step's start, a pit of 10 000 balls landing blew
+// up in its twentieth step). Never counted down, the shares settle, and
+// the sweeps with them (counted afresh each sweep, a frictionless pile
+// flickered and never came to rest).
 fn shares(i: u32, back: bool) -> f32 {
     return max(f32(max((state[i] >> IMPACT_SHIFT) & 31u, 1u)), spin_in(i, back).w);
 }
@@ -178,7 +181,7 @@ fn solve_ball(i: u32, back: bool) {
         }
     }
     put_vel(i, back, vec4<f32>(v.xyz + push.velocity, v.w));
-    put_spin(i, back, vec4<f32>(w.xyz + push.spin, push.pushing));
+    put_spin(i, back, vec4<f32>(w.xyz + push.spin, max(split, push.pushing)));
 }
 
 // After the impacts, gravity and each ball's contacts' warm impulses are
