@@ -40,7 +40,7 @@ impl BallState {
             .sum()
     }
 
-    /// The balls as the CPU engine keeps them (see [`World::put_balls`]).
+    /// The balls as the CPU engine keeps them (see [`rolypoly_physics::World::put_balls`]).
     pub fn to_balls(&self) -> Balls {
         let vectors = |v: &[Vec3]| v.iter().map(|v| v.as_dvec3()).collect();
         Balls::from_parts(
