@@ -57,7 +57,8 @@ const _: () = assert!(
         && JACOBI_SWEEPS_PER_ITERATION.is_multiple_of(2)
 );
 /// Worlds of up to this many balls sweep in one workgroup (see
-/// `small.wgsl`), where the dispatches would cost more than their work.
+/// `SMALL_GROUP` in `step/common.wgsl`), where the dispatches would cost
+/// more than their work.
 const SMALL_WORLD_BALLS: u32 = 1024;
 /// How much of what a sweep asks each contact applies, over its share.
 const RELAXATION: f32 = 1.0;
