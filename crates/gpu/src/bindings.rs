@@ -4,10 +4,28 @@
 use crate::layout::{Body, Catch, EVENT_CAPACITY, IMPACT_ROUNDS, SLOTS};
 
 /// Bindings in the group: the uniform and the storage buffers.
-pub const BINDINGS: u32 = 30;
+pub const BINDINGS: u32 = 32;
 
 /// Bytes of the impact rounds' indirect dispatches: four words a round.
 pub const IMPACT_DISPATCH_BYTES: u64 = 16 * IMPACT_ROUNDS as u64;
+
+/// A storage buffer a compute pass reads and writes.
+pub const READ_WRITE: wgpu::BufferBindingType =
+    wgpu::BufferBindingType::Storage { read_only: false };
+
+/// A compute pass's buffer at `binding`, bound whole.
+pub fn compute_buffer(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
 
 /// Each buffer, named by what it holds (see `common.wgsl`).
 pub struct Buffers {
@@ -41,6 +59,8 @@ pub struct Buffers {
     pub slot_mirror: wgpu::Buffer,
     pub impact_list: wgpu::Buffer,
     pub impact_count: wgpu::Buffer,
+    pub ball_rank: wgpu::Buffer,
+    pub slot_impulse_more: wgpu::Buffer,
     /// Not in the group: bound to the passes that write it alone (see
     /// `step/impacts.rs`).
     pub impact_dispatch: wgpu::Buffer,
@@ -60,10 +80,16 @@ pub struct Sizes {
     pub colors: u64,
 }
 
+/// Contact slots a ball keeps in each of the impulses' two buffers (see
+/// `impulse_at` in `step/common.wgsl`).
+const HALF_SLOTS: u64 = SLOTS / 2;
+const _: () = assert!(SLOTS.is_multiple_of(2));
+
 impl Sizes {
-    /// The largest buffer's size in bytes: each ball's contacts' impulses.
+    /// The largest buffer's size in bytes: each ball's contacts' impacts,
+    /// and each half of their impulses.
     pub fn largest_buffer(&self) -> u64 {
-        16 * SLOTS * self.balls
+        (16 * HALF_SLOTS).max(8 * SLOTS) * self.balls
     }
 }
 
@@ -109,7 +135,7 @@ impl Buffers {
             cell_fill: make("cell fill", 4 * (sizes.cells + 1), U::STORAGE | U::COPY_SRC),
             cell_balls: make("balls by cell", 4 * n, U::STORAGE),
             slot_other: make("contact partners", 4 * SLOTS * n, U::STORAGE),
-            slot_impulse: make("contact impulses", 16 * SLOTS * n, U::STORAGE),
+            slot_impulse: make("contact impulses", 16 * HALF_SLOTS * n, U::STORAGE),
             wall_impulse: make("wall impulses", 16 * 3 * n, U::STORAGE),
             body_of: make("body of each ball", 4 * n, U::STORAGE),
             body_impulse: make("body impulses", 16 * n, U::STORAGE),
@@ -145,6 +171,12 @@ impl Buffers {
                 "balls that bounce in each round",
                 4 * u64::from(IMPACT_ROUNDS),
                 U::STORAGE | U::COPY_DST,
+            ),
+            ball_rank: make("place of each ball by cell", 4 * n, U::STORAGE),
+            slot_impulse_more: make(
+                "contact impulses, second half",
+                16 * HALF_SLOTS * n,
+                U::STORAGE,
             ),
             impact_dispatch: make(
                 "impact sweeps' dispatches",
@@ -187,6 +219,8 @@ impl Buffers {
             &self.slot_mirror,
             &self.impact_list,
             &self.impact_count,
+            &self.ball_rank,
+            &self.slot_impulse_more,
         ]
     }
 
@@ -200,19 +234,15 @@ impl Buffers {
     /// read and written.
     pub fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..BINDINGS)
-            .map(|binding| wgpu::BindGroupLayoutEntry {
-                binding,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty: match binding {
+            .map(|binding| {
+                compute_buffer(
+                    binding,
+                    match binding {
                         0 => wgpu::BufferBindingType::Uniform,
                         17 | 18 => wgpu::BufferBindingType::Storage { read_only: true },
-                        _ => wgpu::BufferBindingType::Storage { read_only: false },
+                        _ => READ_WRITE,
                     },
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
+                )
             })
             .collect();
         device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

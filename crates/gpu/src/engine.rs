@@ -5,7 +5,7 @@ use crate::GpuError;
 use crate::bindings::{Buffers, Sizes};
 use crate::device::describe;
 use crate::layout::{
-    Body, Catch, EVENT_CAPACITY, FIREBALL, IMPACT_DISPATCH_START, IMPACT_ROUNDS, Params,
+    Body, Catch, EVENT_CAPACITY, FIREBALL, IMPACT_DISPATCH_START, IMPACT_ROUNDS, Params, grid_cells,
 };
 use crate::profile::StageTimer;
 use crate::readback::read_buffer;
@@ -26,19 +26,24 @@ pub use snapshot::GpuSnapshot;
 
 /// Thrown balls a run can add on top of its scene's.
 pub const THROW_ROOM: u64 = 1024;
-/// Jacobi sweeps of each impact round.
+/// Jacobi sweeps of each impact round, one a dispatch.
 const SWEEPS_PER_ROUND: u32 = 12;
 /// Balls nearer than this, in the largest ball's radii, are solved
 /// together whether or not they close at the step's start: a ball struck
 /// into its neighbour within the step must meet it.
 const REACH_RADII: f64 = 0.25;
-/// The solver's Jacobi sweeps for each of the scene's solver iterations
-/// (Gauss-Seidel sweeps, on the CPU engine): a Jacobi sweep passes a push
-/// one contact on where a Gauss-Seidel sweep may pass it down a column.
-/// The bench's 10 000-ball pit sank 9.2 mm deep in its first half second
-/// at four (unrelaxed), 6.9 at six, 3.5 at six over-relaxed (3.9 with
-/// eight Gauss-Seidel sweeps).
-const JACOBI_SWEEPS_PER_ITERATION: u32 = 6;
+/// The solver's dispatches for each of the scene's solver iterations
+/// (Gauss-Seidel sweeps, on the CPU engine), and the Jacobi sweeps each
+/// runs among each block of neighbouring balls (see `ball_at` in
+/// `step/common.wgsl`; a block stops early once settled). A Jacobi sweep
+/// passes a push one contact on where a Gauss-Seidel sweep may pass it
+/// down a column, and a contact between two blocks is worked out once a
+/// dispatch. The bench's 10 000-ball pit at eight iterations sank, in its
+/// first half second: 3.5 mm with 48 dispatches of one sweep; 6.7 with 8
+/// of six; 4.1 with 16 of six; 3.5 with 16 of twelve, 3.7 stopping early
+/// (3.9 with eight Gauss-Seidel sweeps).
+const SOLVE_DISPATCHES_PER_ITERATION: u32 = 2;
+const SOLVE_SWEEPS_PER_DISPATCH: u32 = 12;
 /// How far past its own fix a sweep pushes a contact among several (see
 /// `relaxation` in `solve.wgsl`): shares of a ball's mass make each push
 /// small. Below 2, where a contact would ring; 1.8 held the bench's pits
@@ -47,14 +52,19 @@ const JACOBI_SWEEPS_PER_ITERATION: u32 = 6;
 /// of a push on balls in flight, and a 200-ball elastic gas under gravity
 /// lost 1.6 % of its energy in 10 s, not 0.5 %.
 const SOLVE_RELAXATION: f32 = 1.8;
-/// Sweeps that push overlapping balls apart after they move.
+/// Sweeps that push overlapping balls apart after they move, one a
+/// dispatch. Run among blocks as the solver's are, a pile's weight presses
+/// through many blocks: the bench's 10 000-ball pit sank 5.6 mm in its
+/// first half second with eight dispatches of two, 10.0 with two of eight,
+/// 3.5 with sixteen of one (and the impacts' twelve sweeps as two
+/// dispatches of six, 4.9).
 const SHIFT_SWEEPS: u32 = 16;
 // Jacobi sweeps alternate between two copies and must end in the first
 // (see `vel_in` in `common.wgsl`).
 const _: () = assert!(
     SWEEPS_PER_ROUND.is_multiple_of(2)
         && SHIFT_SWEEPS.is_multiple_of(2)
-        && JACOBI_SWEEPS_PER_ITERATION.is_multiple_of(2)
+        && SOLVE_DISPATCHES_PER_ITERATION.is_multiple_of(2)
 );
 /// Worlds of up to this many balls sweep in one workgroup (see
 /// `SMALL_GROUP` in `step/common.wgsl`), where the dispatches would cost
@@ -146,7 +156,7 @@ impl GpuBalls {
         let spacing = (size.element_product() / balls.len().max(1) as f64).cbrt();
         let cell = (CELL_RADII * largest).max(spacing);
         let dims = (size / cell).ceil().max(DVec3::ONE);
-        let cells = (dims.x * dims.y * dims.z) as u64;
+        let cells = grid_cells([dims.x as u32, dims.y as u32, dims.z as u32]);
         let capacity = balls.len() as u64 + THROW_ROOM;
         let tumblers = world.tumblers().len();
         let spheres = world.tumbler_shape().spheres.len();
@@ -164,7 +174,9 @@ impl GpuBalls {
         let bind_group = buffers.bind_group(&device, &layout);
         let sweeps = SweepCounts {
             impact_sweeps: SWEEPS_PER_ROUND,
-            solve_sweeps: JACOBI_SWEEPS_PER_ITERATION * config.solver.iterations.max(1) as u32,
+            solve_dispatches: SOLVE_DISPATCHES_PER_ITERATION
+                * config.solver.iterations.max(1) as u32,
+            solve_block_sweeps: SOLVE_SWEEPS_PER_DISPATCH,
             shift_sweeps: SHIFT_SWEEPS,
         };
         let stages = Stages::new(&device, &buffers, &layout, cells, &sweeps);

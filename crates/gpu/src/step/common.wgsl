@@ -3,12 +3,13 @@
 
 const WORKGROUP: u32 = 256u;
 // A world of few balls runs each sweeping stage (the impacts, the solver,
-// the overlaps) as one dispatch of one workgroup of this many threads,
-// each taking every SMALL_GROUP-th ball, with a barrier where a large
-// world ends a dispatch: the same sweeps, to rounding. Some hundred
-// dispatches a step cost a small world more than their work. The sweep
-// counts (IMPACT_ROUNDS, IMPACT_SWEEPS, SOLVE_SWEEPS, SHIFT_SWEEPS) are
-// written above this file by the stage that runs them.
+// the overlaps) as one dispatch of one workgroup, with a barrier where a
+// large world ends a dispatch: the same sweeps, to rounding. Some tens of
+// dispatches a step cost a small world more than their work. The impacts'
+// and overlaps' workgroup has SMALL_GROUP threads, each taking every
+// SMALL_GROUP-th ball; the solver's takes each of a large world's blocks
+// in turn (see `ball_at`). The sweep counts are written above this file
+// by the stage that runs them.
 const SMALL_GROUP: u32 = 64u;
 // Workgroups a dispatch may have along x; more spill into y.
 const MAX_GROUPS: u32 = 65535u;
@@ -103,7 +104,8 @@ struct Event {
 @group(0) @binding(10) var<storage, read_write> cell_fill: array<atomic<u32>>;
 @group(0) @binding(11) var<storage, read_write> cell_balls: array<u32>;
 // Each ball's contacts with other balls: the other's number, and the
-// impulse so far (friction xyz, normal w). SLOTS a ball.
+// impulse so far (friction xyz, normal w). SLOTS a ball; the impulses in
+// two halves (see `impulse_at`).
 @group(0) @binding(12) var<storage, read_write> slot_other: array<u32>;
 @group(0) @binding(13) var<storage, read_write> slot_impulse: array<vec4<f32>>;
 // Each ball's contacts with the room's nearest wall on each axis.
@@ -139,6 +141,35 @@ struct Event {
 // bounces this round, and how many it holds in each round.
 @group(0) @binding(28) var<storage, read_write> impact_list: array<u32>;
 @group(0) @binding(29) var<storage, read_write> impact_count: array<atomic<u32>>;
+// Each ball's place in `cell_balls` (see `ball_at`).
+@group(0) @binding(30) var<storage, read_write> ball_rank: array<u32>;
+// The second half of each ball's contacts' impulses (see `impulse_at`).
+@group(0) @binding(31) var<storage, read_write> slot_impulse_more: array<vec4<f32>>;
+
+// The impulse so far of contact slot `at` (ball at / SLOTS, its slot
+// at % SLOTS). A ball's first SLOTS / 2 slots are kept in one buffer and
+// the rest in another, so that neither outgrows the largest binding an
+// adapter allows (lavapipe's 128 MiB holds a million balls' halves).
+fn impulse_at(at: u32) -> vec4<f32> {
+    let half = SLOTS / 2u;
+    let k = at % SLOTS;
+    let kept = at / SLOTS * half + k % half;
+    if k < half {
+        return slot_impulse[kept];
+    }
+    return slot_impulse_more[kept];
+}
+
+fn set_impulse(at: u32, impulse: vec4<f32>) {
+    let half = SLOTS / 2u;
+    let k = at % SLOTS;
+    let kept = at / SLOTS * half + k % half;
+    if k < half {
+        slot_impulse[kept] = impulse;
+    } else {
+        slot_impulse_more[kept] = impulse;
+    }
+}
 
 // No bounce asked: any goal is larger.
 const NO_GOAL: f32 = -1e30;
@@ -196,9 +227,17 @@ fn cell_coords(p: vec3<f32>) -> vec3<i32> {
     return clamp(vec3<i32>(c), vec3<i32>(0), vec3<i32>(params.dims.xyz) - 1);
 }
 
+// Cells are numbered brick by brick (BRICK cells along x, y and z, written
+// above this file from `layout.rs`), each brick's cells in a row, so that
+// balls in cell order come in compact clumps: the blocks the solver's
+// sweeps work on together (see `ball_at`).
 fn cell_id(c: vec3<i32>) -> u32 {
-    let d = params.dims;
-    return u32(c.x) + d.x * (u32(c.y) + d.y * u32(c.z));
+    let cell = vec3<u32>(c);
+    let brick = cell / BRICK;
+    let inner = cell % BRICK;
+    let bricks = (params.dims.xyz + BRICK - 1u) / BRICK;
+    let brick_id = brick.x + bricks.x * (brick.y + bricks.y * brick.z);
+    return brick_id * BRICK.x * BRICK.y * BRICK.z + inner.y + BRICK.y * (inner.x + BRICK.x * inner.z);
 }
 
 // A solid sphere's inverse moment of inertia from its inverse mass.
@@ -343,4 +382,32 @@ fn put_pos(i: u32, back: bool, p: vec4<f32>) {
     } else {
         delta[i] = p;
     }
+}
+
+// Balls in a block: a workgroup's sweeps in a dispatch work on the balls
+// at places WORKGROUP * g .. WORKGROUP * (g + 1) of `cell_balls`, a clump
+// of neighbours (see `cell_id`), and keep them in workgroup memory between
+// sweeps, so that one dispatch runs several sweeps among them; a contact
+// with a ball of another block is worked out once a dispatch, from the
+// copy the dispatch started with. The solver sweeps so (see solve.wgsl).
+fn block_index(group: vec3<u32>) -> u32 {
+    return group.x + group.y * MAX_GROUPS;
+}
+
+// The ball at `place` in cell order, or NONE past the balls in play.
+fn ball_at(place: u32) -> u32 {
+    if place < cell_start[params.cells] {
+        return cell_balls[place];
+    }
+    return NONE;
+}
+
+// Where ball `j` is kept in block `g`'s workgroup memory, or NONE if it
+// is another block's.
+fn place_in_block(j: u32, g: u32) -> u32 {
+    let place = ball_rank[j];
+    if place / WORKGROUP == g {
+        return place % WORKGROUP;
+    }
+    return NONE;
 }

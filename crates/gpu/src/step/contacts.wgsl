@@ -41,13 +41,13 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     var old_impulse: array<vec4<f32>, SLOTS>;
     for (var k = 0u; k < old_slots; k++) {
         old_ball[k] = slot_other[i * SLOTS + k];
-        old_impulse[k] = slot_impulse[i * SLOTS + k];
+        old_impulse[k] = impulse_at(i * SLOTS + k);
     }
     let old_body = select(NONE, body_of[i], (old & SOLVED) != 0u);
     let old_body_impulse = body_impulse[i];
     for (var k = 0u; k < SLOTS; k++) {
         slot_other[i * SLOTS + k] = NONE;
-        slot_impulse[i * SLOTS + k] = vec4<f32>(0.0);
+        set_impulse(i * SLOTS + k, vec4<f32>(0.0));
     }
     var old_walls: array<vec4<f32>, 3>;
     for (var axis = 0u; axis < 3u; axis++) {
@@ -144,7 +144,7 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
                 }
                 // Friction kept in the new tangent plane only.
                 let f = old_impulse[m].xyz;
-                slot_impulse[i * SLOTS + k] = vec4<f32>(f - dot(f, n) * n, old_impulse[m].w);
+                set_impulse(i * SLOTS + k, vec4<f32>(f - dot(f, n) * n, old_impulse[m].w));
             }
         }
     }
@@ -234,7 +234,7 @@ fn find_mirrors(@builtin(global_invocation_id) id: vec3<u32>) {
         // (see solve.wgsl): the lower-numbered ball's, which only its
         // own thread writes, and not here.
         if mirror != NONE && j < i {
-            slot_impulse[i * SLOTS + k] = slot_impulse[mirror];
+            set_impulse(i * SLOTS + k, impulse_at(mirror));
         }
     }
 }

@@ -105,7 +105,7 @@ fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         var held = body_impulse[i].w > 0.0;
         for (var k = 0u; k < slot_count(state[i]); k++) {
-            held = held || slot_impulse[i * SLOTS + k].w > 0.0;
+            held = held || impulse_at(i * SLOTS + k).w > 0.0;
         }
         for (var axis = 0u; axis < 3u; axis++) {
             held = held || (touches_wall(state[i], axis) && wall_impulse[i * 3u + axis].w > 0.0);

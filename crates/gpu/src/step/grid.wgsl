@@ -54,4 +54,7 @@ fn sort_cells(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         cell_balls[m] = ball;
     }
+    for (var k = first; k < end; k++) {
+        ball_rank[cell_balls[k]] = k;
+    }
 }

@@ -4,8 +4,8 @@
 //! sweeps' dispatches to the list, on the GPU: a round in which nothing
 //! bounces dispatches no workgroups.
 
-use super::{Recorder, Shaders};
-use crate::bindings::Buffers;
+use super::{JacobiSweeps, Recorder, Shaders};
+use crate::bindings::{Buffers, READ_WRITE, compute_buffer};
 use crate::layout::{IMPACT_DISPATCH_START, IMPACT_ROUNDS};
 use crate::profile::Stage;
 
@@ -15,9 +15,8 @@ pub struct Impacts {
     /// Each round's: goals raised and the list made, which also sizes
     /// the round's sweeps.
     raise_goals: [wgpu::ComputePipeline; ROUNDS],
-    /// Each round's sweep, each way (see `vel_in` in `common.wgsl`).
-    sweep: [[wgpu::ComputePipeline; 2]; ROUNDS],
-    sweeps: u32,
+    /// Each round's sweeps.
+    sweeps: [JacobiSweeps; ROUNDS],
     in_one_group: wgpu::ComputePipeline,
     /// The rounds' dispatches, and the group that binds them to the
     /// passes that size them (and to no other: a buffer a dispatch reads
@@ -34,19 +33,9 @@ impl Impacts {
         sweeps: u32,
     ) -> Impacts {
         let device = shaders.device;
-        let storage = wgpu::BindGroupLayoutEntry {
-            binding: 0,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
         let sizing_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("impact dispatches"),
-            entries: &[storage],
+            entries: &[compute_buffer(0, READ_WRITE)],
         });
         let sizing = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("impact dispatches"),
@@ -73,13 +62,13 @@ impl Impacts {
             raise_goals: std::array::from_fn(|round| {
                 in_round(round, &sizing_pipelines, "raise_impact_goals")
             }),
-            sweep: std::array::from_fn(|round| {
-                [
-                    in_round(round, &shaders.layout, "impacts_forth"),
-                    in_round(round, &shaders.layout, "impacts_back"),
-                ]
+            sweeps: std::array::from_fn(|round| {
+                JacobiSweeps::new(
+                    sweeps,
+                    |entry| in_round(round, &shaders.layout, entry),
+                    ["impacts_forth", "impacts_back"],
+                )
             }),
-            sweeps,
             in_one_group: shaders.pipeline(&module, "impacts_in_one_group"),
             dispatches: buffers.impact_dispatch.clone(),
             sizing,
@@ -96,9 +85,7 @@ impl Impacts {
             for round in 0..ROUNDS {
                 pass.over_balls(&self.raise_goals[round]);
                 let sizes = (std::mem::size_of_val(&IMPACT_DISPATCH_START) * round) as u64;
-                for sweep in 0..self.sweeps as usize {
-                    pass.sized_by_gpu(&self.sweep[round][sweep % 2], &self.dispatches, sizes);
-                }
+                self.sweeps[round].record_sized(pass, &self.dispatches, sizes);
             }
         });
     }

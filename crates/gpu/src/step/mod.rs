@@ -14,17 +14,58 @@ mod scan;
 mod solve;
 
 use crate::bindings::Buffers;
-use crate::layout::{SLOTS, groups};
+use crate::layout::{BRICK, SLOTS, groups};
 use crate::profile::{Stage, StageTimer};
 
-/// How many sweeps each sweeping stage runs a step.
+/// How each sweeping stage sweeps a step (see `vel_in` in `common.wgsl`:
+/// each an even number of dispatches).
 pub struct SweepCounts {
-    /// Jacobi sweeps of each impact round.
+    /// Each impact round's Jacobi sweeps, one a dispatch.
     pub impact_sweeps: u32,
-    /// Jacobi sweeps of the resting contacts.
-    pub solve_sweeps: u32,
-    /// Jacobi sweeps pushing overlaps out.
+    /// The resting contacts': dispatches, each running `solve_block_sweeps`
+    /// sweeps among each block of neighbouring balls (see `ball_at`).
+    pub solve_dispatches: u32,
+    pub solve_block_sweeps: u32,
+    /// The overlaps' Jacobi sweeps, one a dispatch.
     pub shift_sweeps: u32,
+}
+
+/// A stage's dispatches of Jacobi sweeps, alternating between the two
+/// copies they read and write (see `vel_in` in `common.wgsl`).
+struct JacobiSweeps {
+    each_way: [wgpu::ComputePipeline; 2],
+    dispatches: u32,
+}
+
+impl JacobiSweeps {
+    /// `dispatches` of the entry points `forth` and `back`, made by
+    /// `pipeline`.
+    fn new(
+        dispatches: u32,
+        pipeline: impl Fn(&str) -> wgpu::ComputePipeline,
+        [forth, back]: [&str; 2],
+    ) -> JacobiSweeps {
+        JacobiSweeps {
+            each_way: [pipeline(forth), pipeline(back)],
+            dispatches,
+        }
+    }
+
+    /// Each dispatch with a thread (or a block's workgroup) for each ball
+    /// in use.
+    fn record(&self, pass: &mut Pass) {
+        for dispatch in 0..self.dispatches as usize {
+            pass.over_balls(&self.each_way[dispatch % 2]);
+        }
+    }
+
+    /// Each dispatch with as many workgroups as the GPU wrote at `offset`
+    /// in `sizes`.
+    fn record_sized(&self, pass: &mut Pass, sizes: &wgpu::Buffer, offset: u64) {
+        for dispatch in 0..self.dispatches as usize {
+            pass.sized_by_gpu(&self.each_way[dispatch % 2], sizes, offset);
+        }
+    }
 }
 
 /// What the stages build their pipelines from: the device, the layout of
@@ -45,7 +86,10 @@ impl<'a> Shaders<'a> {
                 immediate_size: 0,
             }),
             common: format!(
-                "const SLOTS: u32 = {SLOTS}u;\n{}",
+                "const SLOTS: u32 = {SLOTS}u;\nconst BRICK = vec3<u32>({}u, {}u, {}u);\n{}",
+                BRICK[0],
+                BRICK[1],
+                BRICK[2],
                 include_str!("common.wgsl")
             ),
         }
@@ -219,7 +263,7 @@ impl Stages {
             grid: grid::Grid::new(&shaders, buffers, cells),
             contacts: contacts::Contacts::new(&shaders),
             impacts: impacts::Impacts::new(&shaders, buffers, layout, counts.impact_sweeps),
-            solve: solve::Solve::new(&shaders, counts.solve_sweeps),
+            solve: solve::Solve::new(&shaders, counts),
             report: report::Report::new(&shaders),
             flight: flight::Flight::new(&shaders),
             overlaps: overlaps::Overlaps::new(&shaders, counts.shift_sweeps),

@@ -1,13 +1,11 @@
 //! Stage 7, the overlaps (`overlaps.wgsl`): what the velocities left of
 //! overlap pushed out by position, in Jacobi sweeps, one dispatch each.
 
-use super::{Recorder, Shaders};
+use super::{JacobiSweeps, Recorder, Shaders};
 use crate::profile::Stage;
 
 pub struct Overlaps {
-    /// A sweep each way (see `pos_in` in `common.wgsl`).
-    sweep: [wgpu::ComputePipeline; 2],
-    sweeps: u32,
+    sweeps: JacobiSweeps,
     in_one_group: wgpu::ComputePipeline,
 }
 
@@ -18,13 +16,10 @@ impl Overlaps {
             &[("SHIFT_SWEEPS", sweeps)],
             include_str!("overlaps.wgsl"),
         );
+        let pipeline = |entry: &str| shaders.pipeline(&module, entry);
         Overlaps {
-            sweep: [
-                shaders.pipeline(&module, "overlaps_forth"),
-                shaders.pipeline(&module, "overlaps_back"),
-            ],
-            sweeps,
-            in_one_group: shaders.pipeline(&module, "overlaps_in_one_group"),
+            sweeps: JacobiSweeps::new(sweeps, pipeline, ["overlaps_forth", "overlaps_back"]),
+            in_one_group: pipeline("overlaps_in_one_group"),
         }
     }
 
@@ -34,9 +29,7 @@ impl Overlaps {
             if small {
                 return pass.workgroups(&self.in_one_group, 1, 1);
             }
-            for sweep in 0..self.sweeps as usize {
-                pass.over_balls(&self.sweep[sweep % 2]);
-            }
+            self.sweeps.record(pass);
         });
     }
 }

@@ -2,6 +2,7 @@
 //! block of 256 is scanned in place, the blocks' totals are scanned a level
 //! up, and added back. Deterministic: integers, no atomics.
 
+use crate::bindings::{READ_WRITE, compute_buffer};
 use crate::layout::{WORKGROUP, groups};
 use wgpu::util::DeviceExt;
 
@@ -28,30 +29,12 @@ impl Scan {
             label: Some("scan"),
             source: wgpu::ShaderSource::Wgsl(include_str!("scan.wgsl").into()),
         });
-        let storage = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only: false },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
+        let storage = |binding| compute_buffer(binding, READ_WRITE);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("scan"),
             entries: &[
                 // var<uniform> scan: ScanParams
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                compute_buffer(0, wgpu::BufferBindingType::Uniform),
                 // var<storage, read_write> values: array<u32>
                 storage(1),
                 // var<storage, read_write> block_totals: array<u32>

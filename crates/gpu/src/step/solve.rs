@@ -1,33 +1,36 @@
 //! Stage 4, the contact solver (`solve.wgsl`): gravity and the warm start
-//! given to the velocities, then Jacobi sweeps with mass splitting, one
-//! dispatch each.
+//! given to the velocities, then Jacobi sweeps with mass splitting, a few
+//! a dispatch among each block of neighbouring balls (see `ball_at` in
+//! `common.wgsl`).
 
-use super::{Recorder, Shaders};
+use super::{JacobiSweeps, Recorder, Shaders, SweepCounts};
 use crate::profile::Stage;
 
 pub struct Solve {
     warm_start: wgpu::ComputePipeline,
-    /// A sweep each way (see `vel_in` in `common.wgsl`).
-    sweep: [wgpu::ComputePipeline; 2],
-    sweeps: u32,
+    sweeps: JacobiSweeps,
     in_one_group: wgpu::ComputePipeline,
 }
 
 impl Solve {
-    pub fn new(shaders: &Shaders, sweeps: u32) -> Solve {
+    pub fn new(shaders: &Shaders, counts: &SweepCounts) -> Solve {
         let module = shaders.module(
             "solve",
-            &[("SOLVE_SWEEPS", sweeps)],
+            &[
+                ("SOLVE_DISPATCHES", counts.solve_dispatches),
+                ("BLOCK_SWEEPS", counts.solve_block_sweeps),
+            ],
             include_str!("solve.wgsl"),
         );
+        let pipeline = |entry: &str| shaders.pipeline(&module, entry);
         Solve {
-            warm_start: shaders.pipeline(&module, "warm_start"),
-            sweep: [
-                shaders.pipeline(&module, "solve_forth"),
-                shaders.pipeline(&module, "solve_back"),
-            ],
-            sweeps,
-            in_one_group: shaders.pipeline(&module, "solve_in_one_group"),
+            warm_start: pipeline("warm_start"),
+            sweeps: JacobiSweeps::new(
+                counts.solve_dispatches,
+                pipeline,
+                ["solve_forth", "solve_back"],
+            ),
+            in_one_group: pipeline("solve_in_one_group"),
         }
     }
 
@@ -38,9 +41,7 @@ impl Solve {
             if small {
                 return pass.workgroups(&self.in_one_group, 1, 1);
             }
-            for sweep in 0..self.sweeps as usize {
-                pass.over_balls(&self.sweep[sweep % 2]);
-            }
+            self.sweeps.record(pass);
         });
     }
 }

@@ -3,9 +3,10 @@
 // Each contact pushes (never pulls) towards that, with Coulomb friction
 // towards no slip.
 //
-// A sweep is one dispatch, a thread a ball (Jacobi, see `vel_in`): each
-// ball works out every contact it has from the velocities the last sweep
-// left, and takes the sum of their pushes. Summed whole, pushes that each
+// A sweep is Jacobi's (see `vel_in`): each ball works out every contact
+// it has from the velocities the last sweep left, and takes the sum of
+// their pushes. A dispatch runs BLOCK_SWEEPS of them among each block of
+// neighbouring balls (see `solve_block`). Summed whole, pushes that each
 // fix their contact alone would overshoot where a ball has several, so
 // each contact is worked out as if each of its balls had only a share of
 // its mass, one for each of its contacts that push: mass splitting
@@ -30,8 +31,8 @@ const BODY_WEIGHTS: f32 = 4.0;
 // up in its twentieth step). Never counted down, the shares settle, and
 // the sweeps with them (counted afresh each sweep, a frictionless pile
 // flickered and never came to rest).
-fn shares(i: u32, back: bool) -> f32 {
-    return max(f32(max((state[i] >> IMPACT_SHIFT) & 31u, 1u)), spin_in(i, back).w);
+fn shares(i: u32, seen: Seen) -> f32 {
+    return max(f32(max((state[i] >> IMPACT_SHIFT) & 31u, 1u)), seen.spin.w);
 }
 
 // How far past its own fix a contact whose balls' mass is split at most
@@ -43,6 +44,18 @@ fn relaxation(shares: f32) -> f32 {
     return select(params.solve_relaxation, 1.0, shares <= 1.0);
 }
 
+// A ball as a sweep sees it: its velocity (w: inverse mass) and spin (w:
+// the most of its contacts that pushed so far, see `shares`).
+struct Seen {
+    vel: vec4<f32>,
+    spin: vec4<f32>,
+}
+
+// Ball i as the last sweep left it, in the copy a sweep `back` reads.
+fn seen_in(i: u32, back: bool) -> Seen {
+    return Seen(vel_in(i, back), spin_in(i, back));
+}
+
 // Ball i's change of velocity and of spin, from its contacts, and how
 // many of them push.
 struct Push {
@@ -51,34 +64,42 @@ struct Push {
     pushing: f32,
 }
 
-// The contact of ball `i` kept in its slot `at`, with ball `j`.
-fn solve_pair(i: u32, j: u32, at: u32, back: bool) -> Push {
+// The contact of ball `i` kept in its slot `at`, with ball `j`, each as
+// the sweep sees it.
+fn solve_pair(i: u32, j: u32, at: u32, mine: Seen, theirs: Seen) -> Push {
     let a = min(i, j);
     let b = i + j - a;
     let pa = pos[a];
     let pb = pos[b];
-    let va = vel_in(a, back);
-    let vb = vel_in(b, back);
+    let first_is_mine = i == a;
+    var seen_a = theirs;
+    var seen_b = mine;
+    if first_is_mine {
+        seen_a = mine;
+        seen_b = theirs;
+    }
+    let va = seen_a.vel;
+    let vb = seen_b.vel;
     let d = pa.xyz - pb.xyz;
     let n = direction(d);
     let goal = speculative_goal(length(d) - pa.w - pb.w);
     // Each ball's mass split among its contacts.
-    let share_a = shares(a, back);
-    let share_b = shares(b, back);
+    let share_a = shares(a, seen_a);
+    let share_b = shares(b, seen_b);
     let k = (share_a * va.w + share_b * vb.w) / relaxation(max(share_a, share_b));
-    let total = slot_impulse[at];
+    let total = impulse_at(at);
     let normal = max(0.0, total.w + (goal - dot(va.xyz - vb.xyz, n)) / k);
     // The contact points' relative velocity, less its normal part: the slip.
-    let u = va.xyz + cross(spin_in(a, back).xyz, -pa.w * n) - vb.xyz - cross(spin_in(b, back).xyz, pb.w * n);
+    let u = va.xyz + cross(seen_a.spin.xyz, -pa.w * n) - vb.xyz - cross(seen_b.spin.xyz, pb.w * n);
     let slip = u - dot(u, n) * n;
     // A solid sphere's contact point is 7/2 times as easy to move sideways.
     let friction = clamp_friction(total.xyz - slip / (3.5 * k), params.material.y * normal);
-    slot_impulse[at] = vec4<f32>(friction, normal);
+    set_impulse(at, vec4<f32>(friction, normal));
     // On the lower-numbered ball; the other gets its opposite.
     let change = (normal - total.w) * n + (friction - total.xyz);
     let im = vel[i].w;
     let pushing = select(0.0, 1.0, normal > 0.0);
-    if i == a {
+    if first_is_mine {
         return Push(change * im, cross(-pa.w * n, change) * inv_inertia(im, pa.w), pushing);
     }
     return Push(-change * im, cross(pb.w * n, -change) * inv_inertia(im, pb.w), pushing);
@@ -143,45 +164,119 @@ fn solve_body(i: u32, v: vec3<f32>, shares: f32) -> Push {
     return Push((normal - total.w) * n * im, vec3<f32>(0.0), select(0.0, 1.0, normal > 0.0));
 }
 
-@compute @workgroup_size(256)
-fn solve_forth(@builtin(global_invocation_id) id: vec3<u32>) {
-    solve_ball(ball_index(id), false);
-}
-
-@compute @workgroup_size(256)
-fn solve_back(@builtin(global_invocation_id) id: vec3<u32>) {
-    solve_ball(ball_index(id), true);
-}
-
-// One sweep of ball i's contacts.
-fn solve_ball(i: u32, back: bool) {
-    if i >= params.count {
-        return;
-    }
-    let v = vel_in(i, back);
-    let w = spin_in(i, back);
-    if !in_solver(i) {
-        // Carried over, so that the copy the sweeps end in holds every ball.
-        put_vel(i, back, v);
-        put_spin(i, back, w);
-        return;
-    }
-    let split = shares(i, back);
-    var push = solve_walls(i, v.xyz, w.xyz, split);
-    let body = solve_body(i, v.xyz, split);
+// Ball i's contacts with the walls and its body.
+fn solve_own(i: u32, mine: Seen) -> Push {
+    let split = shares(i, mine);
+    var push = solve_walls(i, mine.vel.xyz, mine.spin.xyz, split);
+    let body = solve_body(i, mine.vel.xyz, split);
     push.velocity += body.velocity;
     push.pushing += body.pushing;
-    for (var k = 0u; k < slot_count(state[i]); k++) {
-        let at = i * SLOTS + k;
-        if slot_mirror[at] != NONE {
-            let pair = solve_pair(i, slot_other[at], at, back);
-            push.velocity += pair.velocity;
-            push.spin += pair.spin;
-            push.pushing += pair.pushing;
+    return push;
+}
+
+fn add_push(push: ptr<function, Push>, more: Push) {
+    (*push).velocity += more.velocity;
+    (*push).spin += more.spin;
+    (*push).pushing += more.pushing;
+}
+
+// Ball i after a sweep's `push`, its shares kept (see `shares`).
+fn pushed(i: u32, mine: Seen, push: Push) -> Seen {
+    return Seen(
+        vec4<f32>(mine.vel.xyz + push.velocity, mine.vel.w),
+        vec4<f32>(mine.spin.xyz + push.spin, max(shares(i, mine), push.pushing)),
+    );
+}
+
+// The balls of one block (see `ball_at`) as workgroup memory holds them
+// between its sweeps.
+var<workgroup> block_balls: array<Seen, WORKGROUP>;
+
+@compute @workgroup_size(256)
+fn solve_forth(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) t: u32) {
+    solve_block(block_index(group), t, false);
+}
+
+@compute @workgroup_size(256)
+fn solve_back(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation_index) t: u32) {
+    solve_block(block_index(group), t, true);
+}
+
+// Up to BLOCK_SWEEPS sweeps of block g's balls, thread t taking its t-th:
+// a contact within the block every sweep, from what the sweep before
+// left in workgroup memory; a contact with another block's ball in the
+// first sweep only, from the copy the dispatch reads, as that block works
+// it out too, from the same numbers, so both keep the same impulse. The
+// block stops early once a sweep moves none of its balls by more than
+// SETTLED_SPEED: a pile at rest, warm-started, settles in a sweep or two.
+fn solve_block(g: u32, t: u32, back: bool) {
+    let i = ball_at(g * WORKGROUP + t);
+    let solved = in_solver(i);
+    if i != NONE {
+        block_balls[t] = seen_in(i, back);
+    }
+    if t == 0u {
+        atomicStore(&block_moving, 0u);
+    }
+    workgroupBarrier();
+    for (var sweep = 0u; sweep < BLOCK_SWEEPS; sweep++) {
+        var after = Seen(vec4<f32>(0.0), vec4<f32>(0.0));
+        if solved {
+            let before = block_balls[t];
+            after = sweep_in_block(i, g, before, sweep == 0u, back);
+            let moved = length(after.vel.xyz - before.vel.xyz)
+                + pos[i].w * length(after.spin.xyz - before.spin.xyz);
+            if moved > SETTLED_SPEED {
+                atomicOr(&block_moving, 1u);
+            }
+        }
+        workgroupBarrier();
+        if solved {
+            block_balls[t] = after;
+        }
+        if t == 0u {
+            block_sweeping = atomicExchange(&block_moving, 0u);
+            if sweep == 0u {
+                atomicOr(&world_moving, block_sweeping);
+            }
+        }
+        if workgroupUniformLoad(&block_sweeping) == 0u {
+            break;
         }
     }
-    put_vel(i, back, vec4<f32>(v.xyz + push.velocity, v.w));
-    put_spin(i, back, vec4<f32>(w.xyz + push.spin, max(split, push.pushing)));
+    if i != NONE {
+        put_vel(i, back, block_balls[t].vel);
+        put_spin(i, back, block_balls[t].spin);
+    }
+}
+
+// A sweep that changes no ball's velocity (or its surface's speed from
+// spin) by more than this (m/s) ends its block's sweeps in a dispatch.
+const SETTLED_SPEED: f32 = 1e-5;
+// Whether any of the block's balls moved more than SETTLED_SPEED in this
+// sweep, and a copy of it read alike by every thread.
+var<workgroup> block_moving: atomic<u32>;
+var<workgroup> block_sweeping: u32;
+
+// One sweep of ball i in block g (see `solve_block`).
+fn sweep_in_block(i: u32, g: u32, mine: Seen, first: bool, back: bool) -> Seen {
+    var push = solve_own(i, mine);
+    for (var k = 0u; k < slot_count(state[i]); k++) {
+        let at = i * SLOTS + k;
+        if slot_mirror[at] == NONE {
+            continue;
+        }
+        let j = slot_other[at];
+        let near = place_in_block(j, g);
+        if near != NONE {
+            add_push(&push, solve_pair(i, j, at, mine, block_balls[near]));
+        } else if first {
+            add_push(&push, solve_pair(i, j, at, mine, seen_in(j, back)));
+        } else {
+            push.pushing += select(0.0, 1.0, impulse_at(at).w > 0.0);
+        }
+    }
+    return pushed(i, mine, push);
 }
 
 // After the impacts, gravity and each ball's contacts' warm impulses are
@@ -207,7 +302,7 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
             }
             let a = min(i, j);
             let n = direction(pos[a].xyz - pos[i + j - a].xyz);
-            let total = slot_impulse[i * SLOTS + k];
+            let total = impulse_at(i * SLOTS + k);
             // Pushing already, or closing on its margin within the step.
             let d = p - pos[j].xyz;
             let closing = max(0.0, -dot(vel_start[i].xyz - vel_start[j].xyz, direction(d)));
@@ -239,13 +334,32 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
     spin[i] = vec4<f32>(spin[i].xyz + dw, 0.0);
 }
 
-// A small world's sweeps in one workgroup (see `SMALL_GROUP`).
-@compute @workgroup_size(SMALL_GROUP)
+// A small world's dispatches in one workgroup (see `SMALL_GROUP` in
+// `common.wgsl`), each block in turn. Once a dispatch's first sweeps
+// settle every block, so would the next's, from the same velocities: the
+// rest are passed over, after a back dispatch, which ends in the first
+// copy.
+@compute @workgroup_size(256)
 fn solve_in_one_group(@builtin(local_invocation_index) t: u32) {
-    for (var sweep = 0u; sweep < SOLVE_SWEEPS; sweep++) {
-        for (var i = t; i < params.count; i += SMALL_GROUP) {
-            solve_ball(i, sweep % 2u == 1u);
+    let blocks = (params.count + WORKGROUP - 1u) / WORKGROUP;
+    for (var dispatch = 0u; dispatch < SOLVE_DISPATCHES; dispatch++) {
+        if t == 0u {
+            atomicStore(&world_moving, 0u);
+        }
+        for (var g = 0u; g < blocks; g++) {
+            solve_block(g, t, dispatch % 2u == 1u);
         }
         storageBarrier();
+        if t == 0u {
+            world_sweeping = atomicLoad(&world_moving);
+        }
+        if dispatch % 2u == 1u && workgroupUniformLoad(&world_sweeping) == 0u {
+            break;
+        }
     }
 }
+
+// Whether any block moved in its first sweep of the dispatch, and a copy
+// read alike by every thread.
+var<workgroup> world_moving: atomic<u32>;
+var<workgroup> world_sweeping: u32;
