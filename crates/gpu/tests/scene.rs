@@ -142,7 +142,7 @@ fn a_steps_dispatches_are_counted_and_do_not_grow_with_the_balls() {
     // A world of up to 1024 balls sweeps each stage in one workgroup.
     assert!(small > 0 && small < some, "{small} against {some}");
     // Ten times the balls: the same passes, but for the grid's scan, one
-    // level (two dispatches) more for each 256-fold of cells.
+    // level (two dispatches) more for each 1024-fold of cells.
     assert!(many >= some && many <= some + 2, "{some} then {many}");
     // The solver's dispatches each run several sweeps among a block of
     // balls, not one sweep each (119 a step that way), nor one for each of

@@ -98,7 +98,8 @@ struct Event {
 // See ALIVE, SOLVED.
 @group(0) @binding(7) var<storage, read_write> state: array<u32>;
 // The grid: each ball's cell, each cell's first place in `cell_balls`
-// (one past the end: the count), the balls by cell.
+// (one past the end: the count), each cell's balls not yet placed (zero
+// between steps), the balls by cell.
 @group(0) @binding(8) var<storage, read_write> cell_of: array<u32>;
 @group(0) @binding(9) var<storage, read_write> cell_start: array<u32>;
 @group(0) @binding(10) var<storage, read_write> cell_fill: array<atomic<u32>>;
@@ -129,10 +130,9 @@ struct Event {
 // body (w), two a ball: goals, then impulses.
 @group(0) @binding(23) var<storage, read_write> slot_impact: array<vec2<f32>>;
 @group(0) @binding(24) var<storage, read_write> own_impact: array<vec4<f32>>;
-// The speed of the fastest ball in each cell, as bits (positive floats
-// order as their bits do, so the largest is the same whatever order the
-// atomics land in); and of the fastest ball in the 27 cells around each ball.
-@group(0) @binding(25) var<storage, read_write> cell_speed: array<atomic<u32>>;
+// The speed of the fastest ball in each cell, and of the fastest ball in
+// the 27 cells around each ball.
+@group(0) @binding(25) var<storage, read_write> cell_speed: array<f32>;
 @group(0) @binding(26) var<storage, read_write> near_speed: array<f32>;
 // For each contact slot, where its other ball keeps the same contact, or
 // NONE (see `find_mirrors`).

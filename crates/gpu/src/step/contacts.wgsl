@@ -14,18 +14,18 @@ fn gauge_near_speed(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let home = cell_coords(pos[i].xyz);
-    var fastest = 0u;
+    var fastest = 0.0;
     for (var dz = -1; dz <= 1; dz++) {
         for (var dy = -1; dy <= 1; dy++) {
             for (var dx = -1; dx <= 1; dx++) {
                 let c = home + vec3<i32>(dx, dy, dz);
                 if all(c >= vec3<i32>(0)) && all(c < vec3<i32>(params.dims.xyz)) {
-                    fastest = max(fastest, atomicLoad(&cell_speed[cell_id(c)]));
+                    fastest = max(fastest, cell_speed[cell_id(c)]);
                 }
             }
         }
     }
-    near_speed[i] = bitcast<f32>(fastest);
+    near_speed[i] = fastest;
 }
 
 @compute @workgroup_size(256)

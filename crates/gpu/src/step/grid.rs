@@ -1,7 +1,8 @@
 //! Stage 1, the grid (`grid.wgsl`): each ball's cell counted, the counts
-//! scanned into each cell's first place (`scan`), the balls placed, and
-//! each cell's list sorted by ball number, so that every later pass walks
-//! the same lists in the same order whatever order the atomics landed in.
+//! scanned into each cell's first place (`scan`), the balls placed (which
+//! counts each cell back down to zero for the next step), and each cell's
+//! list sorted by ball number, so that every later pass walks the same
+//! lists in the same order whatever order the atomics landed in.
 
 use super::scan::Scan;
 use super::{Recorder, Shaders, Stamps};
@@ -9,7 +10,6 @@ use crate::bindings::Buffers;
 use crate::profile::Stage;
 
 pub struct Grid {
-    clear_cells: wgpu::ComputePipeline,
     count_cells: wgpu::ComputePipeline,
     place_in_cells: wgpu::ComputePipeline,
     sort_cells: wgpu::ComputePipeline,
@@ -24,7 +24,6 @@ impl Grid {
     pub fn new(shaders: &Shaders, buffers: &Buffers, cells: u64) -> Grid {
         let module = shaders.module("grid", &[], include_str!("grid.wgsl"));
         Grid {
-            clear_cells: shaders.pipeline(&module, "clear_cells"),
             count_cells: shaders.pipeline(&module, "count_cells"),
             place_in_cells: shaders.pipeline(&module, "place_in_cells"),
             sort_cells: shaders.pipeline(&module, "sort_cells"),
@@ -35,10 +34,9 @@ impl Grid {
         }
     }
 
-    /// Two passes around the scan; the stage's stamps span all four parts.
+    /// Two passes around the scan; the stage's stamps span all three parts.
     pub fn record(&self, step: &mut Recorder) {
         step.pass(Stage::Grid, Stamps::Start, |pass| {
-            pass.over(&self.clear_cells, self.cells + 1);
             pass.over_balls(&self.count_cells);
         });
         step.encoder.copy_buffer_to_buffer(
@@ -50,7 +48,6 @@ impl Grid {
         );
         step.dispatches += self.scan.record(step.encoder);
         step.pass(Stage::Grid, Stamps::End, |pass| {
-            pass.over(&self.clear_cells, self.cells + 1);
             pass.over_balls(&self.place_in_cells);
             pass.over(&self.sort_cells, self.cells);
         });

@@ -1,15 +1,7 @@
 // The uniform grid, built so that each cell lists its balls in ball order
 // whatever order the atomics land in: count, scan (see scan.wgsl), place,
-// then sort each cell's short list.
-
-@compute @workgroup_size(256)
-fn clear_cells(@builtin(global_invocation_id) id: vec3<u32>) {
-    let c = ball_index(id);
-    if c <= params.cells {
-        atomicStore(&cell_fill[c], 0u);
-        atomicStore(&cell_speed[c], 0u);
-    }
-}
+// then sort each cell's short list. Placing counts each cell back down to
+// zero, so the counts need no clearing between steps.
 
 @compute @workgroup_size(256)
 fn count_cells(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -33,10 +25,11 @@ fn place_in_cells(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let c = cell_of[i];
-    cell_balls[cell_start[c] + atomicAdd(&cell_fill[c], 1u)] = i;
-    atomicMax(&cell_speed[c], bitcast<u32>(length(vel[i].xyz)));
+    cell_balls[cell_start[c] + atomicSub(&cell_fill[c], 1u) - 1u] = i;
 }
 
+// Each cell's list sorted, each ball's place in the order noted, and the
+// cell's fastest ball gauged.
 @compute @workgroup_size(256)
 fn sort_cells(@builtin(global_invocation_id) id: vec3<u32>) {
     let c = ball_index(id);
@@ -54,7 +47,11 @@ fn sort_cells(@builtin(global_invocation_id) id: vec3<u32>) {
         }
         cell_balls[m] = ball;
     }
+    var fastest = 0.0;
     for (var k = first; k < end; k++) {
-        ball_rank[cell_balls[k]] = k;
+        let ball = cell_balls[k];
+        ball_rank[ball] = k;
+        fastest = max(fastest, length(vel[ball].xyz));
     }
+    cell_speed[c] = fastest;
 }

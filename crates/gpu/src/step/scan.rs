@@ -1,10 +1,17 @@
 //! An exclusive prefix sum of `u32` on the GPU (`scan.wgsl`): each
-//! block of 256 is scanned in place, the blocks' totals are scanned a level
-//! up, and added back. Deterministic: integers, no atomics.
+//! block of [`BLOCK`] is scanned in place, the blocks' totals are scanned a
+//! level up, and added back. Deterministic: integers, no atomics. Blocks of
+//! a thousand make a million cells two levels: three dispatches.
 
 use crate::bindings::{READ_WRITE, compute_buffer};
 use crate::layout::{WORKGROUP, groups};
 use wgpu::util::DeviceExt;
+
+/// Values each thread sums in a run of its own.
+const PER_THREAD: u32 = 4;
+
+/// Values a workgroup scans.
+const BLOCK: u64 = WORKGROUP as u64 * PER_THREAD as u64;
 
 /// The scan's pipelines and, for one buffer of a given length, its levels.
 pub struct Scan {
@@ -27,7 +34,13 @@ impl Scan {
     pub fn new(device: &wgpu::Device, values: &wgpu::Buffer, len: u64) -> Scan {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("scan"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("scan.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(
+                format!(
+                    "const PER_THREAD: u32 = {PER_THREAD}u;\n{}",
+                    include_str!("scan.wgsl")
+                )
+                .into(),
+            ),
         });
         let storage = |binding| compute_buffer(binding, READ_WRITE);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -59,7 +72,7 @@ impl Scan {
         // Each level's length, down to the one block whose total is the sum.
         let mut lens = vec![len.max(1)];
         loop {
-            let above = lens[lens.len() - 1].div_ceil(u64::from(WORKGROUP));
+            let above = lens[lens.len() - 1].div_ceil(BLOCK);
             lens.push(above);
             if above == 1 {
                 break;
@@ -128,7 +141,7 @@ impl Scan {
         pass.set_pipeline(&self.scan_blocks);
         for level in &self.levels {
             pass.set_bind_group(0, &level.bind_group, &[]);
-            let (x, y) = groups(level.len);
+            let (x, y) = groups(level.len.div_ceil(u64::from(PER_THREAD)));
             pass.dispatch_workgroups(x, y, 1);
         }
         pass.set_pipeline(&self.add_block_offsets);
@@ -177,7 +190,18 @@ mod tests {
     fn the_scan_matches_a_running_sum_at_the_block_edges() {
         let compute = crate::Compute::headless().expect("an adapter");
         // One block, one past it, two levels, one past two levels, three.
-        for len in [1, 2, 255, 256, 257, 65_535, 65_536, 65_537, 300_000] {
+        let two_levels = BLOCK * BLOCK;
+        for len in [
+            1,
+            2,
+            BLOCK - 1,
+            BLOCK,
+            BLOCK + 1,
+            two_levels - 1,
+            two_levels,
+            two_levels + 1,
+            2 * two_levels + 3 * BLOCK + 5,
+        ] {
             let values: Vec<u32> = (0..len as u32).map(|i| (i * 7 + 3) % 5).collect();
             let expected: Vec<u32> = values
                 .iter()

@@ -168,9 +168,7 @@ fn solve_body(i: u32, v: vec3<f32>, shares: f32) -> Push {
 fn solve_own(i: u32, mine: Seen) -> Push {
     let split = shares(i, mine);
     var push = solve_walls(i, mine.vel.xyz, mine.spin.xyz, split);
-    let body = solve_body(i, mine.vel.xyz, split);
-    push.velocity += body.velocity;
-    push.pushing += body.pushing;
+    add_push(&push, solve_body(i, mine.vel.xyz, split));
     return push;
 }
 
@@ -209,7 +207,8 @@ fn solve_back(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
 // it out too, from the same numbers, so both keep the same impulse. The
 // block stops early once a sweep moves none of its balls by more than
 // SETTLED_SPEED: a pile at rest, warm-started, settles in a sweep or two.
-fn solve_block(g: u32, t: u32, back: bool) {
+// Returns whether the first sweep moved any ball by more than that.
+fn solve_block(g: u32, t: u32, back: bool) -> bool {
     let i = ball_at(g * WORKGROUP + t);
     let solved = in_solver(i);
     if i != NONE {
@@ -219,6 +218,7 @@ fn solve_block(g: u32, t: u32, back: bool) {
         atomicStore(&block_moving, 0u);
     }
     workgroupBarrier();
+    var first_moved = false;
     for (var sweep = 0u; sweep < BLOCK_SWEEPS; sweep++) {
         var after = Seen(vec4<f32>(0.0), vec4<f32>(0.0));
         if solved {
@@ -236,11 +236,10 @@ fn solve_block(g: u32, t: u32, back: bool) {
         }
         if t == 0u {
             block_sweeping = atomicExchange(&block_moving, 0u);
-            if sweep == 0u {
-                atomicOr(&world_moving, block_sweeping);
-            }
         }
-        if workgroupUniformLoad(&block_sweeping) == 0u {
+        let moving = workgroupUniformLoad(&block_sweeping) != 0u;
+        first_moved = first_moved || (sweep == 0u && moving);
+        if !moving {
             break;
         }
     }
@@ -248,6 +247,7 @@ fn solve_block(g: u32, t: u32, back: bool) {
         put_vel(i, back, block_balls[t].vel);
         put_spin(i, back, block_balls[t].spin);
     }
+    return first_moved;
 }
 
 // A sweep that changes no ball's velocity (or its surface's speed from
@@ -343,23 +343,15 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
 fn solve_in_one_group(@builtin(local_invocation_index) t: u32) {
     let blocks = (params.count + WORKGROUP - 1u) / WORKGROUP;
     for (var dispatch = 0u; dispatch < SOLVE_DISPATCHES; dispatch++) {
-        if t == 0u {
-            atomicStore(&world_moving, 0u);
-        }
+        // Every thread holds the same answer: each block's is read
+        // through workgroupUniformLoad.
+        var any_moved = false;
         for (var g = 0u; g < blocks; g++) {
-            solve_block(g, t, dispatch % 2u == 1u);
+            any_moved = solve_block(g, t, dispatch % 2u == 1u) || any_moved;
         }
         storageBarrier();
-        if t == 0u {
-            world_sweeping = atomicLoad(&world_moving);
-        }
-        if dispatch % 2u == 1u && workgroupUniformLoad(&world_sweeping) == 0u {
+        if dispatch % 2u == 1u && !any_moved {
             break;
         }
     }
 }
-
-// Whether any block moved in its first sweep of the dispatch, and a copy
-// read alike by every thread.
-var<workgroup> world_moving: atomic<u32>;
-var<workgroup> world_sweeping: u32;
