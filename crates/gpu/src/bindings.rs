@@ -52,8 +52,8 @@ pub struct Buffers {
     pub tumbler_push: wgpu::Buffer,
     pub events: wgpu::Buffer,
     pub event_count: wgpu::Buffer,
-    pub slot_impact: wgpu::Buffer,
-    pub own_impact: wgpu::Buffer,
+    pub first_contact: wgpu::Buffer,
+    pub body_impact: wgpu::Buffer,
     pub cell_speed: wgpu::Buffer,
     pub near_speed: wgpu::Buffer,
     pub slot_mirror: wgpu::Buffer,
@@ -86,10 +86,10 @@ const HALF_SLOTS: u64 = SLOTS / 2;
 const _: () = assert!(SLOTS.is_multiple_of(2));
 
 impl Sizes {
-    /// The largest buffer's size in bytes: each ball's contacts' impacts,
-    /// and each half of their impulses.
+    /// The largest buffer's size in bytes: each half of the balls'
+    /// contacts' impulses.
     pub fn largest_buffer(&self) -> u64 {
-        (16 * HALF_SLOTS).max(8 * SLOTS) * self.balls
+        16 * HALF_SLOTS * self.balls
     }
 }
 
@@ -161,8 +161,8 @@ impl Buffers {
                 U::STORAGE | U::COPY_SRC,
             ),
             event_count: make("catch count", 16, U::STORAGE | U::COPY_SRC | U::COPY_DST),
-            slot_impact: make("contact impacts", 8 * SLOTS * n, U::STORAGE),
-            own_impact: make("wall and body impacts", 32 * n, U::STORAGE),
+            first_contact: make("what each ball meets first", 4 * n, U::STORAGE),
+            body_impact: make("impacts' pushes on bodies", 4 * n, U::STORAGE),
             cell_speed: make("fastest in each cell", 4 * (sizes.cells + 1), U::STORAGE),
             near_speed: make("fastest near each ball", 4 * n, U::STORAGE),
             slot_mirror: make("contact mirrors", 4 * SLOTS * n, U::STORAGE),
@@ -212,8 +212,8 @@ impl Buffers {
             &self.tumbler_push,
             &self.events,
             &self.event_count,
-            &self.slot_impact,
-            &self.own_impact,
+            &self.first_contact,
+            &self.body_impact,
             &self.cell_speed,
             &self.near_speed,
             &self.slot_mirror,

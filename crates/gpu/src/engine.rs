@@ -26,8 +26,6 @@ pub use snapshot::GpuSnapshot;
 
 /// Thrown balls a run can add on top of its scene's.
 pub const THROW_ROOM: u64 = 1024;
-/// Jacobi sweeps of each impact round, one a dispatch.
-const SWEEPS_PER_ROUND: u32 = 12;
 /// Balls nearer than this, in the largest ball's radii, are solved
 /// together whether or not they close at the step's start: a ball struck
 /// into its neighbour within the step must meet it.
@@ -61,11 +59,8 @@ const SOLVE_RELAXATION: f32 = 1.8;
 const SHIFT_SWEEPS: u32 = 16;
 // Jacobi sweeps alternate between two copies and must end in the first
 // (see `vel_in` in `common.wgsl`).
-const _: () = assert!(
-    SWEEPS_PER_ROUND.is_multiple_of(2)
-        && SHIFT_SWEEPS.is_multiple_of(2)
-        && SOLVE_DISPATCHES_PER_ITERATION.is_multiple_of(2)
-);
+const _: () =
+    assert!(SHIFT_SWEEPS.is_multiple_of(2) && SOLVE_DISPATCHES_PER_ITERATION.is_multiple_of(2));
 /// Worlds of up to this many balls sweep in one workgroup (see
 /// `SMALL_GROUP` in `step/common.wgsl`), where the dispatches would cost
 /// more than their work.
@@ -173,7 +168,6 @@ impl GpuBalls {
         let buffers = Buffers::new(&device, &sizes);
         let bind_group = buffers.bind_group(&device, &layout);
         let sweeps = SweepCounts {
-            impact_sweeps: SWEEPS_PER_ROUND,
             solve_dispatches: SOLVE_DISPATCHES_PER_ITERATION
                 * config.solver.iterations.max(1) as u32,
             solve_block_sweeps: SOLVE_SWEEPS_PER_DISPATCH,

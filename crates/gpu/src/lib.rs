@@ -10,9 +10,11 @@
 //! 2. **contacts**: each ball keeps its nearest balls within reach, the
 //!    nearest tumbler sphere, the nearest walls; the fireball takes the
 //!    balls it reaches, if the scene says so;
-//! 3. **impacts**: rounds of Jacobi sweeps of bounces, so a blow passes
-//!    from ball to ball within the step, each round's sweeps dispatched
-//!    over the balls that bounce in it, as many as the GPU counted;
+//! 3. **impacts**: rounds in which each ball meets the contact it touches
+//!    first, if that contact's other side meets it first too, so impacts
+//!    come in time order and a blow passes from ball to ball within the
+//!    step; each round's bounces dispatched over the balls with a first
+//!    contact, as many as the GPU counted;
 //! 4. **solve**: Jacobi sweeps of impulses, normal and friction, with mass
 //!    splitting, a thread a ball; both balls of a contact work it out
 //!    alike, so there are no float atomics;
@@ -22,12 +24,14 @@
 //! 7. **overlaps**: pushed out by position;
 //! 8. the renderer's ball instances written, on the GPU.
 //!
-//! Each sweep of stages 3, 4 and 7 is a dispatch of its own, reading one
-//! copy of what it changes and writing the other; a world of up to 1024
-//! balls runs each of those stages in one workgroup instead, with
-//! barriers between its sweeps: the same sweeps, but that it passes over
-//! the solver's last dispatches once they would change nothing, within
-//! 1e-5 m/s.
+//! Stages 3, 4 and 7 alternate between two copies of what they change,
+//! each impact round (two dispatches), solver dispatch (up to twelve sweeps
+//! among each block of neighbouring balls) or overlap sweep (one dispatch)
+//! reading one and writing the other. A world of up to 1024
+//! balls runs each of those stages in one workgroup instead, with barriers
+//! where a large world ends a dispatch: the same work, but that it passes
+//! over the solver's last dispatches once they would change nothing,
+//! within 1e-5 m/s.
 //!
 //! The same scene, seed and inputs give the same bits on rerun on the same
 //! adapter and driver.

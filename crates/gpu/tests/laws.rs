@@ -99,6 +99,48 @@ fn each_bounce_rises_e_squared_as_high_as_the_last() {
     }
 }
 
+#[test]
+fn a_blow_passes_along_a_row_of_balls_as_in_newtons_cradle() {
+    let compute = compute();
+    // Rows of two to seven balls, each a few millimetres from the next,
+    // the first flying at the rest: at each speed, within one step.
+    for (count, speed, gap) in [(2, 1.0, 0.001), (4, 2.5, 0.004), (7, 0.7, 0.0)] {
+        let mut config = empty_room(DVec3::new(4.0, 2.0, 2.0), count);
+        config.gravity = 0.0;
+        config.balls.restitution = 1.0;
+        config.balls.friction = 0.0;
+        config.solver.bounce_threshold = 0.0;
+        let r = config.balls.radius;
+        config.balls.placements = (0..count)
+            .map(|k| {
+                let x = -1.0 + k as f64 * (2.0 * r + gap);
+                let v = if k == 0 { speed } else { 0.0 };
+                placed(DVec3::new(x, 1.0, 0.0), DVec3::new(v, 0.0, 0.0))
+            })
+            .collect();
+        // In one workgroup, as so small a world is, and in many dispatches.
+        for in_one_group in [true, false] {
+            let (mut world, mut balls) = build(&compute, config.clone(), 3);
+            if !in_one_group {
+                balls.sweep_in_one_group_up_to(0);
+            }
+            step(&mut world, &mut balls);
+            let state = balls.read().unwrap();
+            let last = state.velocities[count - 1];
+            assert!(
+                (f64::from(last.x) - speed).abs() < 1e-5 * speed && last.y.hypot(last.z) < 1e-6,
+                "{count} balls: the last moves at {last} for {speed}"
+            );
+            for (k, v) in state.velocities[..count - 1].iter().enumerate() {
+                assert!(
+                    f64::from(v.length()) < 1e-5 * speed,
+                    "{count} balls: ball {k} kept {v}"
+                );
+            }
+        }
+    }
+}
+
 /// `count` balls flying 1 to 3 m/s through an 8 x 4 x 8 m box, every
 /// impact elastic and frictionless; every impact bounces, however slow,
 /// as in the CPU engine's elastic room.
@@ -148,7 +190,7 @@ fn elastic_balls_without_gravity_keep_their_energy_and_momentum() {
 #[test]
 fn an_elastic_gas_under_gravity_keeps_its_energy() {
     let compute = compute();
-    for (count, seed) in [(100, 2), (100, 5), (200, 3), (200, 8)] {
+    for (count, seed) in [(100, 2), (100, 5), (200, 3), (200, 8), (400, 4), (400, 9)] {
         let config = elastic_gas(count);
         let g = config.gravity;
         let (mut world, mut balls) = build(&compute, config, seed);

@@ -146,12 +146,13 @@ fn a_steps_dispatches_are_counted_and_do_not_grow_with_the_balls() {
     assert!(many >= some && many <= some + 2, "{some} then {many}");
     // The solver's dispatches each run several sweeps among a block of
     // balls, not one sweep each (119 a step that way), nor one for each of
-    // 27 colours of cell (337).
-    assert!(many < 100, "{many} dispatches a step");
+    // 27 colours of cell (337); the impacts' rounds need no sweeps (83
+    // with twelve a round).
+    assert!(many < 60, "{many} dispatches a step");
 }
 
 #[test]
-fn impacts_sweep_the_balls_that_bounce_and_none_at_rest() {
+fn impacts_list_the_balls_that_meet_a_contact_and_none_at_rest() {
     let compute = compute();
     for (count, side, seed) in [(300, 2.0, 1), (700, 3.0, 6)] {
         let mut config = empty_room(DVec3::new(side, 2.0, side), count);
@@ -159,9 +160,9 @@ fn impacts_sweep_the_balls_that_bounce_and_none_at_rest() {
         config.balls.friction = 0.5;
         config.balls.start_fill = 0.6;
         let (mut world, mut balls) = build(&compute, config, seed);
-        // Swept in many dispatches, as a large world is, over the lists.
+        // In many dispatches, as a large world is, over the lists.
         balls.sweep_in_one_group_up_to(0);
-        let mut most = [0u32; 3];
+        let mut most = vec![0; balls.impact_lists().unwrap().len()];
         for _ in 0..60 {
             step(&mut world, &mut balls);
             let lists = balls.impact_lists().unwrap();
@@ -178,10 +179,10 @@ fn impacts_sweep_the_balls_that_bounce_and_none_at_rest() {
         }
         let state = balls.read().unwrap();
         assert!(share_at_rest(&state, 0.05) > 0.99, "{count} balls");
-        assert_eq!(
-            balls.impact_lists().unwrap(),
-            [0; 3],
-            "{count} balls at rest"
+        let lists = balls.impact_lists().unwrap();
+        assert!(
+            lists.iter().all(|&l| l == 0),
+            "{count} balls at rest: {lists:?}"
         );
     }
 }

@@ -124,12 +124,10 @@ struct Event {
 @group(0) @binding(20) var<storage, read_write> tumbler_push: array<vec4<f32>>;
 @group(0) @binding(21) var<storage, read_write> events: array<Event>;
 @group(0) @binding(22) var<storage, read_write> event_count: atomic<u32>;
-// The impacts (see impacts.wgsl): each contact's bounce goal (the
-// separating speed it must reach, the largest any round asked) and its
-// impulse so far. SLOTS a ball for its balls; for its walls (x, y, z) and
-// body (w), two a ball: goals, then impulses.
-@group(0) @binding(23) var<storage, read_write> slot_impact: array<vec2<f32>>;
-@group(0) @binding(24) var<storage, read_write> own_impact: array<vec4<f32>>;
+// The impacts (see impacts.wgsl): what each ball meets first in the
+// round (see `FIRST_WALL`), and its impacts' push on its body this step.
+@group(0) @binding(23) var<storage, read_write> first_contact: array<u32>;
+@group(0) @binding(24) var<storage, read_write> body_impact: array<f32>;
 // The speed of the fastest ball in each cell, and of the fastest ball in
 // the 27 cells around each ball.
 @group(0) @binding(25) var<storage, read_write> cell_speed: array<f32>;
@@ -171,17 +169,17 @@ fn set_impulse(at: u32, impulse: vec4<f32>) {
     }
 }
 
-// No bounce asked: any goal is larger.
-const NO_GOAL: f32 = -1e30;
+// Never within the step: any time of impact is sooner.
+const NEVER: f32 = 3.0e38;
 
-// The separating speed a contact closing at `approach` must bounce to,
-// if it closes fast enough to bounce and touch within the step; else
-// NO_GOAL.
-fn bounce_goal(approach: f32, gap: f32, restitution: f32) -> f32 {
+// When within the step a contact `gap` apart and closing at `approach`
+// touches, if it closes fast enough to bounce and touches in time; else
+// NEVER. Touching already is touching at once.
+fn impact_time(approach: f32, gap: f32) -> f32 {
     if approach > params.grid.z && gap < approach * dt() {
-        return restitution * approach;
+        return max(gap, 0.0) / approach;
     }
-    return NO_GOAL;
+    return NEVER;
 }
 
 // The normal (from b to a) and gap of two balls.
@@ -324,12 +322,11 @@ fn body_point_velocity(b: Body, point: vec3<f32>) -> vec3<f32> {
     return b.velocity.xyz + cross(b.spin.xyz, point - b.origin.xyz);
 }
 
-// Adds the last round's push on the ball's body to the step's (kept in
-// `body_impulse.x`, for the tumblers' pushes), and starts the next at none.
+// Adds the impacts' push on the ball's body to the step's (kept in
+// `body_impulse.x`, for the tumblers' pushes).
 fn fold_body_impact(i: u32) {
-    let done = own_impact[2u * i + 1u];
-    body_impulse[i].x += done.w;
-    own_impact[2u * i + 1u] = vec4<f32>(0.0);
+    body_impulse[i].x += body_impact[i];
+    body_impact[i] = 0.0;
 }
 
 // A stage's Jacobi sweeps alternate between two copies of what they

@@ -131,7 +131,6 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
     for (var k = 0u; k < found; k++) {
         let j = near_ball[k];
         slot_other[i * SLOTS + k] = j;
-        slot_impact[i * SLOTS + k] = vec2<f32>(NO_GOAL, 0.0);
         for (var m = 0u; m < old_slots; m++) {
             if old_ball[m] == j {
                 let a = min(i, j);
@@ -185,8 +184,7 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     body_of[i] = best;
-    own_impact[2u * i] = vec4<f32>(NO_GOAL);
-    own_impact[2u * i + 1u] = vec4<f32>(0.0);
+    body_impact[i] = 0.0;
     if best != NONE && best == old_body {
         body_impulse[i] = vec4<f32>(0.0, 0.0, 0.0, old_body_impulse.w);
     }

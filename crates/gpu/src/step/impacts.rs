@@ -1,10 +1,12 @@
-//! Stage 3, the impacts (`impacts.wgsl`): rounds of Jacobi sweeps of
-//! bounces, so that a blow passes from ball to ball within the step. Each
-//! round first lists the balls with a contact that bounces and sizes its
-//! sweeps' dispatches to the list, on the GPU: a round in which nothing
+//! Stage 3, the impacts (`impacts.wgsl`): rounds in which each ball
+//! meets the contact it touches first, if that contact's other side meets
+//! it first too, so that impacts come one after another in time order and
+//! a blow passes from ball to ball within the step. Each round first finds
+//! the first contacts and lists the balls that have one, sizing the
+//! round's bounces to the list, on the GPU: a round in which nothing
 //! bounces dispatches no workgroups.
 
-use super::{JacobiSweeps, Recorder, Shaders};
+use super::{Recorder, Shaders};
 use crate::bindings::{Buffers, READ_WRITE, compute_buffer};
 use crate::layout::{IMPACT_DISPATCH_START, IMPACT_ROUNDS};
 use crate::profile::Stage;
@@ -12,11 +14,11 @@ use crate::profile::Stage;
 const ROUNDS: usize = IMPACT_ROUNDS as usize;
 
 pub struct Impacts {
-    /// Each round's: goals raised and the list made, which also sizes
-    /// the round's sweeps.
-    raise_goals: [wgpu::ComputePipeline; ROUNDS],
-    /// Each round's sweeps.
-    sweeps: [JacobiSweeps; ROUNDS],
+    /// Each round's: first contacts found and the list made, which also
+    /// sizes the round's bounces.
+    find_first: [wgpu::ComputePipeline; ROUNDS],
+    /// Each round's bounces.
+    bounce: [wgpu::ComputePipeline; ROUNDS],
     in_one_group: wgpu::ComputePipeline,
     /// The rounds' dispatches, and the group that binds them to the
     /// passes that size them (and to no other: a buffer a dispatch reads
@@ -26,12 +28,7 @@ pub struct Impacts {
 }
 
 impl Impacts {
-    pub fn new(
-        shaders: &Shaders,
-        buffers: &Buffers,
-        balls: &wgpu::BindGroupLayout,
-        sweeps: u32,
-    ) -> Impacts {
+    pub fn new(shaders: &Shaders, buffers: &Buffers, balls: &wgpu::BindGroupLayout) -> Impacts {
         let device = shaders.device;
         let sizing_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("impact dispatches"),
@@ -46,28 +43,24 @@ impl Impacts {
             }],
         });
         let sizing_pipelines = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("balls, sizing the impact sweeps"),
+            label: Some("balls, sizing the impact rounds"),
             bind_group_layouts: &[Some(balls), Some(&sizing_layout)],
             immediate_size: 0,
         });
         let module = shaders.module(
             "impacts",
-            &[("IMPACT_ROUNDS", IMPACT_ROUNDS), ("IMPACT_SWEEPS", sweeps)],
+            &[("IMPACT_ROUNDS", IMPACT_ROUNDS)],
             include_str!("impacts.wgsl"),
         );
         let in_round = |round: usize, layout: &wgpu::PipelineLayout, entry: &str| {
             shaders.pipeline_in(layout, &module, entry, &[("IMPACT_ROUND", round as f64)])
         };
         Impacts {
-            raise_goals: std::array::from_fn(|round| {
-                in_round(round, &sizing_pipelines, "raise_impact_goals")
+            find_first: std::array::from_fn(|round| {
+                in_round(round, &sizing_pipelines, "find_first_contacts")
             }),
-            sweeps: std::array::from_fn(|round| {
-                JacobiSweeps::new(
-                    sweeps,
-                    |entry| in_round(round, &shaders.layout, entry),
-                    ["impacts_forth", "impacts_back"],
-                )
+            bounce: std::array::from_fn(|round| {
+                in_round(round, &shaders.layout, "bounce_first_contacts")
             }),
             in_one_group: shaders.pipeline(&module, "impacts_in_one_group"),
             dispatches: buffers.impact_dispatch.clone(),
@@ -83,9 +76,9 @@ impl Impacts {
             }
             pass.pass.set_bind_group(1, &self.sizing, &[]);
             for round in 0..ROUNDS {
-                pass.over_balls(&self.raise_goals[round]);
+                pass.over_balls(&self.find_first[round]);
                 let sizes = (std::mem::size_of_val(&IMPACT_DISPATCH_START) * round) as u64;
-                self.sweeps[round].record_sized(pass, &self.dispatches, sizes);
+                pass.sized_by_gpu(&self.bounce[round], &self.dispatches, sizes);
             }
         });
     }

@@ -20,8 +20,6 @@ use crate::profile::{Stage, StageTimer};
 /// How each sweeping stage sweeps a step (see `vel_in` in `common.wgsl`:
 /// each an even number of dispatches).
 pub struct SweepCounts {
-    /// Each impact round's Jacobi sweeps, one a dispatch.
-    pub impact_sweeps: u32,
     /// The resting contacts': dispatches, each running `solve_block_sweeps`
     /// sweeps among each block of neighbouring balls (see `ball_at`).
     pub solve_dispatches: u32,
@@ -56,14 +54,6 @@ impl JacobiSweeps {
     fn record(&self, pass: &mut Pass) {
         for dispatch in 0..self.dispatches as usize {
             pass.over_balls(&self.each_way[dispatch % 2]);
-        }
-    }
-
-    /// Each dispatch with as many workgroups as the GPU wrote at `offset`
-    /// in `sizes`.
-    fn record_sized(&self, pass: &mut Pass, sizes: &wgpu::Buffer, offset: u64) {
-        for dispatch in 0..self.dispatches as usize {
-            pass.sized_by_gpu(&self.each_way[dispatch % 2], sizes, offset);
         }
     }
 }
@@ -262,7 +252,7 @@ impl Stages {
         Stages {
             grid: grid::Grid::new(&shaders, buffers, cells),
             contacts: contacts::Contacts::new(&shaders),
-            impacts: impacts::Impacts::new(&shaders, buffers, layout, counts.impact_sweeps),
+            impacts: impacts::Impacts::new(&shaders, buffers, layout),
             solve: solve::Solve::new(&shaders, counts),
             report: report::Report::new(&shaders),
             flight: flight::Flight::new(&shaders),
