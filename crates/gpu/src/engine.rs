@@ -65,7 +65,7 @@ const _: () =
 /// `SMALL_GROUP` in `step/common.wgsl`), where the dispatches would cost
 /// more than their work.
 const SMALL_WORLD_BALLS: u32 = 1024;
-/// How much of what a sweep asks each contact applies, over its share.
+/// How much of its share of each overlap an overlap sweep pushes out.
 const RELAXATION: f32 = 1.0;
 /// The speculative margin, in the largest ball's radii: contacts this near
 /// are solved even if they do not close.
@@ -304,8 +304,9 @@ impl GpuBalls {
     }
 
     /// How many balls each impact round of the last step listed as
-    /// bouncing, and so swept (see `step/impacts.rs`); none in a world
-    /// that sweeps in one workgroup, which sweeps every ball. For tests and
+    /// having a contact to meet first, and so ran its bounces over (see
+    /// `step/impacts.rs`); none in a world that runs the rounds in one
+    /// workgroup, which runs every ball. For tests and
     /// the bench: it waits for the GPU.
     pub fn impact_lists(&self) -> Result<[u32; IMPACT_ROUNDS as usize], GpuError> {
         let bytes = self.copy_back(

@@ -73,8 +73,8 @@ pub struct Params {
     pub grid: [f32; 4],
     /// Ball restitution and friction, wall restitution and friction.
     pub material: [f32; 4],
-    /// Wall rolling resistance, tumbler restitution, reach, the impacts'
-    /// and overlaps' relaxation.
+    /// Wall rolling resistance, tumbler restitution, reach, the overlaps'
+    /// relaxation.
     pub more: [f32; 4],
     pub tumblers: u32,
     pub surface_colors: u32,

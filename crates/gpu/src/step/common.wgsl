@@ -19,13 +19,13 @@ const NONE: u32 = 0xffffffffu;
 // A ball's state word: bit 0 alive; bit 1 in the solver (it has a ball or
 // a body within reach); bits 4-7 how many balls it touches; bits 8-10 which
 // of its nearest walls (x, y, z) it touches; bits 11-15 how many of its
-// contacts bounce in this impact round; bits 16-31 its colour's place in
-// the palette.
+// contacts may push within the step (see `warm_start`); bits 16-31 its
+// colour's place in the palette.
 const ALIVE: u32 = 1u;
 const SOLVED: u32 = 2u;
 const SLOT_SHIFT: u32 = 4u;
 const WALL_SHIFT: u32 = 8u;
-const IMPACT_SHIFT: u32 = 11u;
+const PRESSING_SHIFT: u32 = 11u;
 const COLOR_SHIFT: u32 = 16u;
 // Bodies a ball can meet besides balls and walls: tumblers' spheres and the
 // fireball. `Body.info.x` is the tumbler's number, or this for the fireball.

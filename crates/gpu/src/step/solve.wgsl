@@ -32,7 +32,7 @@ const BODY_WEIGHTS: f32 = 4.0;
 // the sweeps with them (counted afresh each sweep, a frictionless pile
 // flickered and never came to rest).
 fn shares(i: u32, seen: Seen) -> f32 {
-    return max(f32(max((state[i] >> IMPACT_SHIFT) & 31u, 1u)), seen.spin.w);
+    return max(f32(max((state[i] >> PRESSING_SHIFT) & 31u, 1u)), seen.spin.w);
 }
 
 // How far past its own fix a contact whose balls' mass is split at most
@@ -328,7 +328,7 @@ fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
             dv += body_impulse[i].w * n * im;
             pressing += 1u;
         }
-        state[i] = (state[i] & ~(31u << IMPACT_SHIFT)) | (min(pressing, 31u) << IMPACT_SHIFT);
+        state[i] = (state[i] & ~(31u << PRESSING_SHIFT)) | (min(pressing, 31u) << PRESSING_SHIFT);
     }
     vel[i] = vec4<f32>(vel[i].xyz + dv, im);
     spin[i] = vec4<f32>(spin[i].xyz + dw, 0.0);
