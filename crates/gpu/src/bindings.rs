@@ -6,9 +6,6 @@ use crate::layout::{Body, Catch, EVENT_CAPACITY, IMPACT_ROUNDS, SLOTS};
 /// Bindings in the group: the uniform and the storage buffers.
 pub const BINDINGS: u32 = 32;
 
-/// Bytes of the impact rounds' indirect dispatches: four words a round.
-pub const IMPACT_DISPATCH_BYTES: u64 = 16 * IMPACT_ROUNDS as u64;
-
 /// A storage buffer a compute pass reads and writes.
 pub const READ_WRITE: wgpu::BufferBindingType =
     wgpu::BufferBindingType::Storage { read_only: false };
@@ -57,13 +54,10 @@ pub struct Buffers {
     pub cell_speed: wgpu::Buffer,
     pub near_speed: wgpu::Buffer,
     pub slot_mirror: wgpu::Buffer,
-    pub impact_list: wgpu::Buffer,
     pub impact_count: wgpu::Buffer,
     pub ball_rank: wgpu::Buffer,
     pub slot_impulse_more: wgpu::Buffer,
-    /// Not in the group: bound to the passes that write it alone (see
-    /// `step/impacts.rs`).
-    pub impact_dispatch: wgpu::Buffer,
+    pub shift: wgpu::Buffer,
 }
 
 /// How many of each the buffers hold.
@@ -161,14 +155,14 @@ impl Buffers {
                 U::STORAGE | U::COPY_SRC,
             ),
             event_count: make("catch count", 16, U::STORAGE | U::COPY_SRC | U::COPY_DST),
-            first_contact: make("what each ball meets first", 4 * n, U::STORAGE),
+            first_contact: make("what each ball meets first, two copies", 8 * n, U::STORAGE),
             body_impact: make("impacts' pushes on bodies", 4 * n, U::STORAGE),
             cell_speed: make("fastest in each cell", 4 * (sizes.cells + 1), U::STORAGE),
             near_speed: make("fastest near each ball", 4 * n, U::STORAGE),
             slot_mirror: make("contact mirrors", 4 * SLOTS * n, U::STORAGE),
-            impact_list: make("balls that bounce", 4 * n, U::STORAGE),
+            shift: make("shifts out of overlaps, two copies", 32 * n, U::STORAGE),
             impact_count: make(
-                "balls that bounce in each round",
+                "balls that meet a contact in each round",
                 4 * u64::from(IMPACT_ROUNDS),
                 U::STORAGE | U::COPY_DST,
             ),
@@ -177,11 +171,6 @@ impl Buffers {
                 "contact impulses, second half",
                 16 * HALF_SLOTS * n,
                 U::STORAGE,
-            ),
-            impact_dispatch: make(
-                "impact sweeps' dispatches",
-                IMPACT_DISPATCH_BYTES,
-                U::STORAGE | U::INDIRECT | U::COPY_DST,
             ),
         }
     }
@@ -217,7 +206,7 @@ impl Buffers {
             &self.cell_speed,
             &self.near_speed,
             &self.slot_mirror,
-            &self.impact_list,
+            &self.shift,
             &self.impact_count,
             &self.ball_rank,
             &self.slot_impulse_more,

@@ -34,7 +34,7 @@ pub const MAX_GROUPS: u32 = 65_535;
 pub const MAX_ITEMS: u64 = MAX_GROUPS as u64 * MAX_GROUPS as u64 * WORKGROUP as u64;
 /// The body number that means the fireball (`FIREBALL`).
 pub const FIREBALL: u32 = 0xffff;
-/// Impact rounds (see `impacts.wgsl`), two dispatches each: each ball
+/// Impact rounds (see `impacts.wgsl`), a dispatch each and one more: each ball
 /// meets at most one contact a round, in time order, and a ball struck in
 /// one round strikes its neighbour in the next, so a blow passes along a
 /// row of thirteen balls within a step. Even, as the rounds alternate
@@ -45,14 +45,12 @@ pub const FIREBALL: u32 = 0xffff;
 /// landing, sank at worst 5.9, 6.9 and 6.8 mm with six rounds (seeds 1 to
 /// 3), 7.4 with eight (seed 1), 9.9 and 4.4 with ten (seeds 1 and 2), 3.2,
 /// 3.4 and 3.0 with twelve, 2.3 and 2.5 with sixteen, and 4.6 (seed 1)
-/// with the three rounds of Jacobi sweeps before. An elastic gas of 400
+/// with the three rounds of Jacobi sweeps before (each with the overlaps
+/// pushed out in sixteen sweeps after the flight). An elastic gas of 400
 /// balls under gravity lost 0.25 % of its energy in 10 s with four rounds,
 /// 0.12 % with six or more.
 pub const IMPACT_ROUNDS: u32 = 12;
 const _: () = assert!(IMPACT_ROUNDS.is_multiple_of(2));
-/// What each round's indirect dispatch starts a step as: no workgroups
-/// along x (one along y and z), and an empty list.
-pub const IMPACT_DISPATCH_START: [u32; 4] = [0, 1, 1, 0];
 /// Catches reported in one step at most (`events`' length).
 pub const EVENT_CAPACITY: u64 = 1024;
 
@@ -73,7 +71,7 @@ pub struct Params {
     pub grid: [f32; 4],
     /// Ball restitution and friction, wall restitution and friction.
     pub material: [f32; 4],
-    /// Wall rolling resistance, tumbler restitution, reach, the overlaps'
+    /// Wall rolling resistance, tumbler restitution, reach, the shifts'
     /// relaxation.
     pub more: [f32; 4],
     pub tumblers: u32,

@@ -17,17 +17,18 @@
 //!    contact, as many as the GPU counted;
 //! 4. **solve**: Jacobi sweeps of impulses, normal and friction, with mass
 //!    splitting, a thread a ball; both balls of a contact work it out
-//!    alike, so there are no float atomics;
+//!    alike, so there are no float atomics; the same sweeps shift the
+//!    balls out of what is left of their overlaps, by position alone;
 //! 5. **report**: the tumblers' pushes, summed in a fixed order;
 //! 6. **flight**: balls a contact held move at their solved velocity,
-//!    others along their exact parabola, bouncing exactly off the walls;
-//! 7. **overlaps**: pushed out by position;
-//! 8. the renderer's ball instances written, on the GPU.
+//!    others along their exact parabola, bouncing exactly off the walls,
+//!    each from where the solver shifted it; the same pass writes the
+//!    renderer's ball instances.
 //!
-//! Stages 3, 4 and 7 alternate between two copies of what they change,
-//! each impact round (two dispatches), solver dispatch (up to twelve sweeps
-//! among each block of neighbouring balls) or overlap sweep (one dispatch)
-//! reading one and writing the other. A world of up to 1024
+//! Stages 3 and 4 alternate between two copies of what they change, each
+//! impact round (one dispatch) or solver dispatch (up to twelve sweeps
+//! among each block of neighbouring balls) reading one and writing the
+//! other. A world of up to 1024
 //! balls runs each of those stages in one workgroup instead, with barriers
 //! where a large world ends a dispatch: the same work, but that it passes
 //! over the solver's last dispatches once they would change nothing,

@@ -13,31 +13,27 @@ pub enum Stage {
     Grid,
     /// The contacts found, kept ones started from their last impulse.
     Contacts,
-    /// The impact rounds.
+    /// The impact rounds, the last ending in gravity and the warm start.
     Impacts,
-    /// The warm start and the contact solver's Jacobi sweeps.
+    /// The contact solver's Jacobi sweeps, which also shift the balls out
+    /// of their overlaps.
     Solve,
     /// The tumblers' pushes summed.
     Push,
-    /// The balls moved, lone ones along their parabolas.
+    /// The balls moved, lone ones along their parabolas, and the
+    /// renderer's instances written.
     Flight,
-    /// The overlaps pushed out.
-    Overlaps,
-    /// The renderer's instances written.
-    Instances,
 }
 
 impl Stage {
     /// Every stage, in order.
-    pub const ALL: [Stage; 8] = [
+    pub const ALL: [Stage; 6] = [
         Stage::Grid,
         Stage::Contacts,
         Stage::Impacts,
         Stage::Solve,
         Stage::Push,
         Stage::Flight,
-        Stage::Overlaps,
-        Stage::Instances,
     ];
 
     /// Its name, as tables print it.
@@ -49,8 +45,6 @@ impl Stage {
             Stage::Solve => "solve",
             Stage::Push => "tumbler pushes",
             Stage::Flight => "flight",
-            Stage::Overlaps => "overlaps",
-            Stage::Instances => "instances",
         }
     }
 }

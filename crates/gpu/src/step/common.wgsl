@@ -2,11 +2,11 @@
 // in one bind group (see `bindings.rs`, which lists them in this order).
 
 const WORKGROUP: u32 = 256u;
-// A world of few balls runs each sweeping stage (the impacts, the solver,
-// the overlaps) as one dispatch of one workgroup, with a barrier where a
-// large world ends a dispatch: the same sweeps, to rounding. Some tens of
-// dispatches a step cost a small world more than their work. The impacts'
-// and overlaps' workgroup has SMALL_GROUP threads, each taking every
+// A world of few balls runs each sweeping stage (the impacts, the solver)
+// as one dispatch of one workgroup, with a barrier where a large world
+// ends a dispatch: the same sweeps, to rounding. Some tens of dispatches
+// a step cost a small world more than their work. The impacts'
+// workgroup has SMALL_GROUP threads, each taking every
 // SMALL_GROUP-th ball; the solver's takes each of a large world's blocks
 // in turn (see `ball_at`). The sweep counts are written above this file
 // by the stage that runs them.
@@ -19,7 +19,7 @@ const NONE: u32 = 0xffffffffu;
 // A ball's state word: bit 0 alive; bit 1 in the solver (it has a ball or
 // a body within reach); bits 4-7 how many balls it touches; bits 8-10 which
 // of its nearest walls (x, y, z) it touches; bits 11-15 how many of its
-// contacts may push within the step (see `warm_start`); bits 16-31 its
+// contacts may push within the step (see warm_start.wgsl); bits 16-31 its
 // colour's place in the palette.
 const ALIVE: u32 = 1u;
 const SOLVED: u32 = 2u;
@@ -49,7 +49,7 @@ struct Params {
     material: vec4<f32>,
     // x: walls' rolling resistance; y: tumblers' restitution; z: the reach
     // within which balls are solved together even if they do not close (m);
-    // w: the impacts' and overlaps' Jacobi relaxation.
+    // w: the share of an overlap a solver sweep pushes out (see `shift_share`).
     more: vec4<f32>,
     // Tumblers whose pushes are summed; the palette's first surface colour.
     tumblers: u32,
@@ -91,8 +91,8 @@ struct Event {
 @group(0) @binding(3) var<storage, read_write> spin: array<vec4<f32>>;
 // The velocity at the start of the step.
 @group(0) @binding(4) var<storage, read_write> vel_start: array<vec4<f32>>;
-// The second copy of the velocities (or of the positions), then of the
-// spins, that the Jacobi sweeps alternate with (see `vel_in`).
+// The second copy of the velocities, then of the spins, that the Jacobi
+// sweeps alternate with (see `vel_in`).
 @group(0) @binding(5) var<storage, read_write> delta: array<vec4<f32>>;
 @group(0) @binding(6) var<storage, read_write> delta_spin: array<vec4<f32>>;
 // See ALIVE, SOLVED.
@@ -125,7 +125,8 @@ struct Event {
 @group(0) @binding(21) var<storage, read_write> events: array<Event>;
 @group(0) @binding(22) var<storage, read_write> event_count: atomic<u32>;
 // The impacts (see impacts.wgsl): what each ball meets first in the
-// round (see `FIRST_WALL`), and its impacts' push on its body this step.
+// round (see `FIRST_WALL`; two copies, see `first_place`), and its
+// impacts' push on its body this step.
 @group(0) @binding(23) var<storage, read_write> first_contact: array<u32>;
 @group(0) @binding(24) var<storage, read_write> body_impact: array<f32>;
 // The speed of the fastest ball in each cell, and of the fastest ball in
@@ -133,11 +134,13 @@ struct Event {
 @group(0) @binding(25) var<storage, read_write> cell_speed: array<f32>;
 @group(0) @binding(26) var<storage, read_write> near_speed: array<f32>;
 // For each contact slot, where its other ball keeps the same contact, or
-// NONE (see `find_mirrors`).
+// NONE (see `note_mirrors` in impacts.wgsl).
 @group(0) @binding(27) var<storage, read_write> slot_mirror: array<u32>;
-// The impacts' work list (see impacts.wgsl): the balls with a contact that
-// bounces this round, and how many it holds in each round.
-@group(0) @binding(28) var<storage, read_write> impact_list: array<u32>;
+// How far the solver moves each ball out of its overlaps this step, by
+// position alone (see solve.wgsl): two copies, one after the other, that
+// its sweeps alternate between as they do the velocities (see `vel_in`).
+@group(0) @binding(28) var<storage, read_write> shift: array<vec4<f32>>;
+// How many balls meet a contact in each impact round (see impacts.wgsl).
 @group(0) @binding(29) var<storage, read_write> impact_count: array<atomic<u32>>;
 // Each ball's place in `cell_balls` (see `ball_at`).
 @group(0) @binding(30) var<storage, read_write> ball_rank: array<u32>;
@@ -293,8 +296,9 @@ fn touches_wall(s: u32, axis: u32) -> bool {
     return ((s >> (WALL_SHIFT + axis)) & 1u) != 0u;
 }
 
-// How many contacts a ball's overlap sweep sums: its share of each is
-// this many times smaller, so that together they do not overshoot.
+// How many contacts a ball's shift out of its overlaps sums (see
+// `shift_share`): its share of each is this many times smaller, so that
+// together they do not overshoot.
 fn contact_count(i: u32) -> u32 {
     let s = state[i];
     var n = slot_count(s) + countOneBits((s >> WALL_SHIFT) & 7u);
@@ -333,8 +337,9 @@ fn fold_body_impact(i: u32) {
 // change: each sweep reads the copy the last one wrote and writes the
 // other, so one dispatch is one sweep, no ball sees a neighbour half-way
 // through one, and the result does not hang on the order threads run in.
-// A forth sweep reads the first copy (`vel`, `spin`, `pos`) and writes the
-// second (`delta`, `delta_spin`); a back sweep, the other way. Stages
+// A forth sweep reads the first copy (`vel`, `spin`, the first half of
+// `shift`) and writes the second (`delta`, `delta_spin`, the second half);
+// a back sweep, the other way. Stages
 // sweep an even number of times, so that they end in the first copy.
 fn vel_in(i: u32, back: bool) -> vec4<f32> {
     if back {
@@ -350,11 +355,13 @@ fn spin_in(i: u32, back: bool) -> vec4<f32> {
     return spin[i];
 }
 
-fn pos_in(i: u32, back: bool) -> vec4<f32> {
-    if back {
-        return delta[i];
-    }
-    return pos[i];
+fn shift_in(i: u32, back: bool) -> vec4<f32> {
+    return shift[shift_place(i, back)];
+}
+
+// Where ball i's shift is kept in the copy a sweep `back` reads.
+fn shift_place(i: u32, back: bool) -> u32 {
+    return select(i, arrayLength(&shift) / 2u + i, back);
 }
 
 fn put_vel(i: u32, back: bool, v: vec4<f32>) {
@@ -373,12 +380,8 @@ fn put_spin(i: u32, back: bool, w: vec4<f32>) {
     }
 }
 
-fn put_pos(i: u32, back: bool, p: vec4<f32>) {
-    if back {
-        pos[i] = p;
-    } else {
-        delta[i] = p;
-    }
+fn put_shift(i: u32, back: bool, s: vec4<f32>) {
+    shift[shift_place(i, !back)] = s;
 }
 
 // Balls in a block: a workgroup's sweeps in a dispatch work on the balls

@@ -9,7 +9,6 @@ use crate::profile::Stage;
 pub struct Contacts {
     gauge_near_speed: wgpu::ComputePipeline,
     find_contacts: wgpu::ComputePipeline,
-    find_mirrors: wgpu::ComputePipeline,
 }
 
 impl Contacts {
@@ -18,7 +17,6 @@ impl Contacts {
         Contacts {
             gauge_near_speed: shaders.pipeline(&module, "gauge_near_speed"),
             find_contacts: shaders.pipeline(&module, "find_contacts"),
-            find_mirrors: shaders.pipeline(&module, "find_mirrors"),
         }
     }
 
@@ -26,7 +24,6 @@ impl Contacts {
         step.stage(Stage::Contacts, |pass| {
             pass.over_balls(&self.gauge_near_speed);
             pass.over_balls(&self.find_contacts);
-            pass.over_balls(&self.find_mirrors);
         });
     }
 }

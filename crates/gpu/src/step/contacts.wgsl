@@ -3,7 +3,7 @@
 // same every run), the nearest body, the nearest walls. The fireball, when
 // it takes balls, takes those it reaches here. A contact kept from the
 // last step starts from the impulse it ended that step with (the warm
-// start, see `warm_start` in solve.wgsl).
+// start, see warm_start.wgsl).
 
 // The fastest ball near each: a blow passed down a column within the step
 // can set a ball moving at the speed of the fastest ball around it.
@@ -206,33 +206,4 @@ fn find_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
         }
     }
     state[i] = s;
-}
-
-// Where each contact's other ball keeps it, found once a step for the
-// warm start and the sweeps: a ball whose list is full may leave out one
-// that lists it, and such a one-sided contact is left to the overlap
-// sweeps.
-@compute @workgroup_size(256)
-fn find_mirrors(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
-    if i >= params.count {
-        return;
-    }
-    for (var k = 0u; k < slot_count(state[i]); k++) {
-        let j = slot_other[i * SLOTS + k];
-        var mirror = NONE;
-        for (var m = 0u; m < slot_count(state[j]); m++) {
-            if slot_other[j * SLOTS + m] == i {
-                mirror = j * SLOTS + m;
-                break;
-            }
-        }
-        slot_mirror[i * SLOTS + k] = mirror;
-        // Both balls of a contact start the solver from the same impulse
-        // (see solve.wgsl): the lower-numbered ball's, which only its
-        // own thread writes, and not here.
-        if mirror != NONE && j < i {
-            set_impulse(i * SLOTS + k, impulse_at(mirror));
-        }
-    }
 }

@@ -1,12 +1,14 @@
 //! Stage 6, the flight (`flight.wgsl`): balls a contact held move at their
 //! solved velocity; others fly their exact parabola, bouncing exactly off
-//! the walls.
+//! the walls; each from where the solver shifted it. The same pass writes
+//! what the renderer draws.
 
 use super::{Recorder, Shaders};
 use crate::profile::Stage;
 
 pub struct Flight {
     fly: wgpu::ComputePipeline,
+    write_instances: wgpu::ComputePipeline,
 }
 
 impl Flight {
@@ -14,10 +16,16 @@ impl Flight {
         let module = shaders.module("flight", &[], include_str!("flight.wgsl"));
         Flight {
             fly: shaders.pipeline(&module, "fly"),
+            write_instances: shaders.pipeline(&module, "write_instances"),
         }
     }
 
     pub fn record(&self, step: &mut Recorder) {
         step.stage(Stage::Flight, |pass| pass.over_balls(&self.fly));
+    }
+
+    /// The renderer's instances of the balls as they stand, without a step.
+    pub fn record_instances(&self, step: &mut Recorder) {
+        step.stage(Stage::Flight, |pass| pass.over_balls(&self.write_instances));
     }
 }

@@ -1,6 +1,7 @@
-// The balls move. A ball a contact held in the solve moves at its solved
-// velocity (its walls were in the solver); its rolling slows on the walls
-// that pushed it. A ball alone, or one that met others only in the impacts at
+// The balls move, each from where the solver shifted it out of its
+// overlaps (see solve.wgsl). A ball a contact held in the solve moves at
+// its solved velocity (its walls were in the solver); its rolling slows
+// on the walls that pushed it. A ball alone, or one that met others only in the impacts at
 // the step's start, flies its exact parabola from where the step began and
 // bounces exactly off the walls it meets on the way, coming to
 // rest on one when it meets it slower than the bounce threshold. Each
@@ -65,18 +66,48 @@ fn normal_of(surface: u32) -> vec3<f32> {
     return n;
 }
 
+// Each ball moved, and what the renderer draws of it written.
 @compute @workgroup_size(256)
 fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count || !alive(i) {
+    if i >= params.count {
         return;
     }
+    if alive(i) {
+        move_ball(i);
+    }
+    put_instance(i);
+}
+
+// The instances of the balls as they stand, without a step.
+@compute @workgroup_size(256)
+fn write_instances(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = ball_index(id);
+    if i < params.count {
+        put_instance(i);
+    }
+}
+
+// What the renderer draws of ball i: centre and radius, colour (see
+// `BallInstance`); nothing of a caught one.
+fn put_instance(i: u32) {
+    if !alive(i) {
+        instances[2u * i] = vec4<f32>(0.0);
+        instances[2u * i + 1u] = vec4<f32>(0.0);
+        return;
+    }
+    instances[2u * i] = pos[i];
+    instances[2u * i + 1u] = vec4<f32>(palette[state[i] >> COLOR_SHIFT].xyz, 0.0);
+}
+
+fn move_ball(i: u32) {
     let r = pos[i].w;
     let im = vel[i].w;
     let step = dt();
     let events_above = params.grid.w;
     var u = vel_start[i].xyz;
     var w = spin[i].xyz;
+    let start = pos[i].xyz + shift_in(i, false).xyz;
     if (state[i] & SOLVED) != 0u {
         var v = vel[i].xyz;
         for (var axis = 0u; axis < 3u; axis++) {
@@ -111,7 +142,7 @@ fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
             held = held || (touches_wall(state[i], axis) && wall_impulse[i * 3u + axis].w > 0.0);
         }
         if held {
-            pos[i] = vec4<f32>(clamp_into_room(pos[i].xyz + v * step, r), r);
+            pos[i] = vec4<f32>(clamp_into_room(start + v * step, r), r);
             vel[i] = vec4<f32>(v, im);
             spin[i] = vec4<f32>(w, 0.0);
             return;
@@ -127,7 +158,7 @@ fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
 
     let restitution = params.material.z;
     let mu = params.material.w;
-    var x = pos[i].xyz;
+    var x = start;
     var g = gravity();
     var left = step;
     for (var bounce = 0; bounce < 8; bounce++) {

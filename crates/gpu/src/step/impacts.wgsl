@@ -5,26 +5,32 @@
 // they closed at, one impact after another in the order they meet, as
 // the CPU engine meets them.
 //
-// They run in rounds, two dispatches each. In the first, each ball finds
-// the contact it meets first (`first_contact_of`): the soonest to touch
-// of those that bounce, ties broken by the numbers of the two sides, so
-// that both balls of a contact rank it alike. In the second, each ball
-// whose first contact is also its partner's first (or a wall, or its
-// body) bounces off it (`bounce_first`). The soonest contact among any
-// group of balls is first for both its balls, so every round meets at
-// least that one. A ball meets at most one contact a round: each impact
-// is two bodies' alone, solved exactly (momentum kept, and all the energy
-// an elastic one had), where a group solved at once would lose some. A
-// ball struck in one round strikes its neighbour in the next, and a row
-// of balls passes a blow along it as Newton's cradle does. Impacts push
-// along the normal only. What is left after the last round the resting
-// contacts stop without a bounce.
+// They run in IMPACT_ROUNDS rounds. In each, every ball finds the contact
+// it meets first (`first_contact_of`): the soonest to touch of those that
+// bounce, ties broken by the numbers of the two sides, so that both balls
+// of a contact rank it alike. Then each ball whose first contact is also
+// its partner's first (or a wall, or its body) bounces off it
+// (`bounce_of`). The soonest contact among any group of balls is first
+// for both its balls, so every round meets at least that one. A ball
+// meets at most one contact a round: each impact is two bodies' alone,
+// solved exactly (momentum kept, and all the energy an elastic one had),
+// where a group solved at once would lose some. A ball struck in one
+// round strikes its neighbour in the next, and a row of balls passes a
+// blow along it as Newton's cradle does. Impacts push along the normal
+// only. What is left after the last round the resting contacts stop
+// without a bounce.
 //
-// Each round reads one copy of the velocities and writes the other (see
-// `vel_in`): the first dispatch copies every ball over, the second
-// writes the bounces.
+// One dispatch ends each round and starts the next (`meet_in_round`):
+// each ball works out its own and its neighbours' bounces in the round
+// before from that round's first contacts, as each of them does, and
+// finds its first contact of this round at the velocities so reached.
+// So the rounds take IMPACT_ROUNDS + 1 dispatches, not two each. Round r
+// reads the velocities copy (r - 1) % 2 holds (see `vel_in`) and writes
+// copy r % 2, and the first contacts likewise (see `first_place`); the
+// last dispatch only bounces, and warm-starts the solver, into the first
+// copy.
 
-// The round this pipeline finds first contacts for, or bounces.
+// The round this pipeline starts (or, the last, only ends).
 override IMPACT_ROUND: u32 = 0u;
 
 // Codes of `first_contact` past a ball's SLOTS contact slots: the walls
@@ -32,46 +38,148 @@ override IMPACT_ROUND: u32 = 0u;
 const FIRST_WALL: u32 = SLOTS;
 const FIRST_BODY: u32 = SLOTS + 3u;
 
-// Each round's bounce dispatch, workgroups along x, y and z (and a pad),
-// widened as balls join its list. Bound apart from the rest, and only to
-// the passes that find first contacts: a buffer a dispatch reads its size
-// from may not be bound for writing in that dispatch.
-@group(1) @binding(0) var<storage, read_write> impact_dispatch: array<atomic<u32>>;
-
-fn round_reads_back() -> bool {
-    return IMPACT_ROUND % 2u == 1u;
-}
-
 @compute @workgroup_size(256)
-fn find_first_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
+fn meet_in_round(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count {
-        return;
-    }
-    if find_first_contact(i, round_reads_back()) {
-        list_for_impacts(i);
+    if i < params.count {
+        meet(i, IMPACT_ROUND);
     }
 }
 
-// Puts ball i on this round's list, and widens the round's dispatch to
-// reach it. The list's order is the order the atomics land in, which
-// changes from run to run; what each ball does on it does not.
-fn list_for_impacts(i: u32) {
-    let round = 4u * IMPACT_ROUND;
-    let at = atomicAdd(&impact_count[IMPACT_ROUND], 1u);
-    impact_list[at] = i;
-    let groups = at / WORKGROUP + 1u;
-    atomicMax(&impact_dispatch[round], min(groups, MAX_GROUPS));
-    atomicMax(&impact_dispatch[round + 1u], (groups + MAX_GROUPS - 1u) / MAX_GROUPS);
+// A small world's rounds in one workgroup (see `SMALL_GROUP`): each thread
+// takes every SMALL_GROUP-th ball.
+@compute @workgroup_size(SMALL_GROUP)
+fn impacts_in_one_group(@builtin(local_invocation_index) t: u32) {
+    for (var round = 0u; round <= IMPACT_ROUNDS; round++) {
+        for (var i = t; i < params.count; i += SMALL_GROUP) {
+            meet(i, round);
+        }
+        storageBarrier();
+    }
 }
 
-// Ball i carried over to the copy the round writes, and the contact it
-// meets first noted; returns whether it has one.
-fn find_first_contact(i: u32, back: bool) -> bool {
-    put_vel(i, back, vel_in(i, back));
-    let first = first_contact_of(i, back);
-    first_contact[i] = first;
-    return first != NONE;
+// Ball i's part in the dispatch that ends round `round - 1` and starts
+// round `round`: its bounce in the round before (its body's share of the
+// push kept), its velocity written, and its first contact in this round
+// found and counted. The first round first notes the mirrors of its
+// contacts, which every later pass reads; the last dispatch, which only
+// ends a round, then starts the solver (see warm_start.wgsl).
+fn meet(i: u32, round: u32) {
+    if round == 0u {
+        note_mirrors(i);
+    } else {
+        let bounce = bounce_in(i, round - 1u);
+        body_impact[i] += bounce.push_on_body;
+        if round < IMPACT_ROUNDS {
+            put_vel(i, reads_back(round - 1u), bounce.velocity);
+        } else if alive(i) {
+            // The first copy, as the solver's sweeps start from it.
+            warm_start(i, bounce.velocity);
+        }
+    }
+    if round < IMPACT_ROUNDS {
+        let first = first_contact_of(i, round);
+        first_contact[first_place(i, round)] = first;
+        if first != NONE {
+            atomicAdd(&impact_count[round], 1u);
+        }
+    }
+}
+
+// Where each of ball i's contacts is kept by its other ball, noted once a
+// step (see `slot_mirror`): a ball whose list is full may leave out one
+// that lists it, and such a one-sided contact is met neither here nor by
+// the solver's pushes, only by its shifts (see solve.wgsl).
+fn note_mirrors(i: u32) {
+    for (var k = 0u; k < slot_count(state[i]); k++) {
+        let j = slot_other[i * SLOTS + k];
+        var mirror = NONE;
+        for (var m = 0u; m < slot_count(state[j]); m++) {
+            if slot_other[j * SLOTS + m] == i {
+                mirror = j * SLOTS + m;
+                break;
+            }
+        }
+        slot_mirror[i * SLOTS + k] = mirror;
+        // Both balls of a contact start the solver from the same impulse
+        // (see solve.wgsl): the lower-numbered ball's, which only its
+        // own thread writes, and not here.
+        if mirror != NONE && j < i {
+            set_impulse(i * SLOTS + k, impulse_at(mirror));
+        }
+    }
+}
+
+// Whether round `round` starts from the second copy of the velocities.
+fn reads_back(round: u32) -> bool {
+    return round % 2u == 1u;
+}
+
+// Where ball i's first contact in round `round` is kept: two copies, one
+// after the other, so that a round's are read while the next's are found.
+fn first_place(i: u32, round: u32) -> u32 {
+    return (round % 2u) * (arrayLength(&first_contact) / 2u) + i;
+}
+
+// Ball j's velocity (w: inverse mass) as round `round` starts: as the
+// step starts, or after its bounce in the round before.
+fn velocity_in(j: u32, round: u32) -> vec4<f32> {
+    if round == 0u {
+        return vel[j];
+    }
+    return bounce_in(j, round - 1u).velocity;
+}
+
+// A ball after its bounce in a round (the velocity it starts it with, if
+// it does not bounce), and its push on its body there.
+struct Bounce {
+    velocity: vec4<f32>,
+    push_on_body: f32,
+}
+
+// Ball j after round `round`: it bounces off its first contact if that is
+// a wall, its body, or a ball whose first contact it is too; along the
+// normal, restitution times the approach more than stops it. A ball
+// works out its neighbours' bounces as they do their own, from the same
+// numbers.
+fn bounce_in(j: u32, round: u32) -> Bounce {
+    let back = reads_back(round);
+    let v = vel_in(j, back);
+    let first = first_contact[first_place(j, round)];
+    if first == NONE {
+        return Bounce(v, 0.0);
+    }
+    let im = v.w;
+    if first < FIRST_WALL {
+        let at = j * SLOTS + first;
+        let other = slot_other[at];
+        if first_contact[first_place(other, round)] != slot_mirror[at] - other * SLOTS {
+            return Bounce(v, 0.0);
+        }
+        // Worked out alike by both balls, from the lower-numbered's side.
+        let a = min(j, other);
+        let b = j + other - a;
+        let g = pair_geometry(a, b);
+        let va = vel_in(a, back);
+        let vb = vel_in(b, back);
+        let approach = -dot(va.xyz - vb.xyz, g.xyz);
+        let impulse = (1.0 + params.material.x) * approach / (va.w + vb.w);
+        let change = impulse * im * g.xyz * select(-1.0, 1.0, j == a);
+        return Bounce(vec4<f32>(v.xyz + change, im), 0.0);
+    }
+    let p = pos[j].xyz;
+    let r = pos[j].w;
+    if first < FIRST_BODY {
+        let n = nearest_wall(p, r, first - FIRST_WALL).xyz;
+        let change = (1.0 + params.material.z) * -dot(v.xyz, n) * n;
+        return Bounce(vec4<f32>(v.xyz + change, im), 0.0);
+    }
+    let body = bodies[body_of[j]];
+    let n = direction(p - body.sphere.xyz);
+    let point = body.sphere.xyz + n * body.sphere.w;
+    let approach = -dot(v.xyz - body_point_velocity(body, point), n);
+    let impulse = (1.0 + params.more.y) * approach / (im + body_inverse_mass(body, point, n));
+    return Bounce(vec4<f32>(v.xyz + impulse * im * n, im), impulse);
 }
 
 // An impact's rank: sooner first, then by the lower and the higher number
@@ -93,12 +201,14 @@ fn ranks_before(a: Rank, b: Rank) -> bool {
     return a.high < b.high;
 }
 
-// The contact ball i meets first at the velocities of copy `back`: a slot,
-// FIRST_WALL + axis, FIRST_BODY, or NONE.
-fn first_contact_of(i: u32, back: bool) -> u32 {
+// The contact ball i meets first in round `round`, at the velocities it
+// and its neighbours start it with: a slot, FIRST_WALL + axis,
+// FIRST_BODY, or NONE.
+fn first_contact_of(i: u32, round: u32) -> u32 {
     if !in_solver(i) {
         return NONE;
     }
+    let v = velocity_in(i, round).xyz;
     var first = NONE;
     var soonest = Rank(NEVER, NONE, NONE);
     for (var k = 0u; k < slot_count(state[i]); k++) {
@@ -110,8 +220,10 @@ fn first_contact_of(i: u32, back: bool) -> u32 {
         let a = min(i, j);
         let b = i + j - a;
         let g = pair_geometry(a, b);
-        let approach = -dot(vel_in(a, back).xyz - vel_in(b, back).xyz, g.xyz);
-        let rank = Rank(impact_time(approach, g.w), a, b);
+        // From the lower-numbered ball's side, as its partner ranks it.
+        let vj = velocity_in(j, round).xyz;
+        let relative = select(vj - v, v - vj, i == a);
+        let rank = Rank(impact_time(-dot(relative, g.xyz), g.w), a, b);
         if rank.time != NEVER && ranks_before(rank, soonest) {
             first = k;
             soonest = rank;
@@ -119,7 +231,6 @@ fn first_contact_of(i: u32, back: bool) -> u32 {
     }
     let p = pos[i].xyz;
     let r = pos[i].w;
-    let v = vel_in(i, back).xyz;
     for (var axis = 0u; axis < 3u; axis++) {
         if touches_wall(state[i], axis) {
             let wall = nearest_wall(p, r, axis);
@@ -143,78 +254,4 @@ fn first_contact_of(i: u32, back: bool) -> u32 {
         }
     }
     return first;
-}
-
-// The change of ball i's velocity `v` (copy `back`) from its first
-// contact `first`, if that contact bounces this round: along the normal,
-// restitution times the approach more than stops it.
-fn bounce_of(i: u32, first: u32, v: vec3<f32>, back: bool) -> vec3<f32> {
-    let im = vel_in(i, back).w;
-    if first < FIRST_WALL {
-        let at = i * SLOTS + first;
-        let j = slot_other[at];
-        // Bounces only if it is the other ball's first too.
-        if first_contact[j] != slot_mirror[at] - j * SLOTS {
-            return vec3<f32>(0.0);
-        }
-        // Worked out alike by both balls, from the lower-numbered's side.
-        let a = min(i, j);
-        let b = i + j - a;
-        let g = pair_geometry(a, b);
-        let va = vel_in(a, back);
-        let vb = vel_in(b, back);
-        let approach = -dot(va.xyz - vb.xyz, g.xyz);
-        let impulse = (1.0 + params.material.x) * approach / (va.w + vb.w);
-        return impulse * im * g.xyz * select(-1.0, 1.0, i == a);
-    }
-    let p = pos[i].xyz;
-    let r = pos[i].w;
-    if first < FIRST_BODY {
-        let n = nearest_wall(p, r, first - FIRST_WALL).xyz;
-        return (1.0 + params.material.z) * -dot(v, n) * n;
-    }
-    let body = bodies[body_of[i]];
-    let n = direction(p - body.sphere.xyz);
-    let point = body.sphere.xyz + n * body.sphere.w;
-    let approach = -dot(v - body_point_velocity(body, point), n);
-    let impulse = (1.0 + params.more.y) * approach / (im + body_inverse_mass(body, point, n));
-    body_impact[i] += impulse;
-    return impulse * im * n;
-}
-
-// Ball i bounced off its first contact, if that bounces this round.
-fn bounce_first(i: u32, back: bool) {
-    let first = first_contact[i];
-    if first == NONE {
-        return;
-    }
-    let v = vel_in(i, back);
-    put_vel(i, back, vec4<f32>(v.xyz + bounce_of(i, first, v.xyz, back), v.w));
-}
-
-// A thread for each ball on the round's list, dispatched as many as the
-// list holds (indirectly): a round in which nothing bounces costs nothing.
-@compute @workgroup_size(256)
-fn bounce_first_contacts(@builtin(global_invocation_id) id: vec3<u32>) {
-    let t = ball_index(id);
-    if t < atomicLoad(&impact_count[IMPACT_ROUND]) {
-        bounce_first(impact_list[t], round_reads_back());
-    }
-}
-
-// A small world's rounds in one workgroup (see `SMALL_GROUP`): each
-// thread takes every SMALL_GROUP-th ball, the list is not needed.
-@compute @workgroup_size(SMALL_GROUP)
-fn impacts_in_one_group(@builtin(local_invocation_index) t: u32) {
-    for (var round = 0u; round < IMPACT_ROUNDS; round++) {
-        let back = round % 2u == 1u;
-        for (var i = t; i < params.count; i += SMALL_GROUP) {
-            _ = find_first_contact(i, back);
-        }
-        storageBarrier();
-        for (var i = t; i < params.count; i += SMALL_GROUP) {
-            bounce_first(i, back);
-        }
-        storageBarrier();
-    }
 }

@@ -8,55 +8,15 @@ mod contacts;
 mod flight;
 mod grid;
 mod impacts;
-mod overlaps;
 mod report;
 mod scan;
 mod solve;
 
+pub use solve::SweepCounts;
+
 use crate::bindings::Buffers;
 use crate::layout::{BRICK, SLOTS, groups};
 use crate::profile::{Stage, StageTimer};
-
-/// How each sweeping stage sweeps a step (see `vel_in` in `common.wgsl`:
-/// each an even number of dispatches).
-pub struct SweepCounts {
-    /// The resting contacts': dispatches, each running `solve_block_sweeps`
-    /// sweeps among each block of neighbouring balls (see `ball_at`).
-    pub solve_dispatches: u32,
-    pub solve_block_sweeps: u32,
-    /// The overlaps' Jacobi sweeps, one a dispatch.
-    pub shift_sweeps: u32,
-}
-
-/// A stage's dispatches of Jacobi sweeps, alternating between the two
-/// copies they read and write (see `vel_in` in `common.wgsl`).
-struct JacobiSweeps {
-    each_way: [wgpu::ComputePipeline; 2],
-    dispatches: u32,
-}
-
-impl JacobiSweeps {
-    /// `dispatches` of the entry points `forth` and `back`, made by
-    /// `pipeline`.
-    fn new(
-        dispatches: u32,
-        pipeline: impl Fn(&str) -> wgpu::ComputePipeline,
-        [forth, back]: [&str; 2],
-    ) -> JacobiSweeps {
-        JacobiSweeps {
-            each_way: [pipeline(forth), pipeline(back)],
-            dispatches,
-        }
-    }
-
-    /// Each dispatch with a thread (or a block's workgroup) for each ball
-    /// in use.
-    fn record(&self, pass: &mut Pass) {
-        for dispatch in 0..self.dispatches as usize {
-            pass.over_balls(&self.each_way[dispatch % 2]);
-        }
-    }
-}
 
 /// What the stages build their pipelines from: the device, the layout of
 /// the balls' one bind group, and the WGSL every stage shares.
@@ -213,18 +173,6 @@ impl Pass<'_, '_> {
         self.pass.dispatch_workgroups(x, y, 1);
         *self.dispatches += 1;
     }
-
-    /// As many workgroups as the GPU wrote at `offset` in `sizes`.
-    fn sized_by_gpu(
-        &mut self,
-        pipeline: &wgpu::ComputePipeline,
-        sizes: &wgpu::Buffer,
-        offset: u64,
-    ) {
-        self.pass.set_pipeline(pipeline);
-        self.pass.dispatch_workgroups_indirect(sizes, offset);
-        *self.dispatches += 1;
-    }
 }
 
 /// Every stage's pipelines.
@@ -235,7 +183,6 @@ pub struct Stages {
     solve: solve::Solve,
     report: report::Report,
     flight: flight::Flight,
-    overlaps: overlaps::Overlaps,
 }
 
 impl Stages {
@@ -252,11 +199,10 @@ impl Stages {
         Stages {
             grid: grid::Grid::new(&shaders, buffers, cells),
             contacts: contacts::Contacts::new(&shaders),
-            impacts: impacts::Impacts::new(&shaders, buffers, layout),
+            impacts: impacts::Impacts::new(&shaders),
             solve: solve::Solve::new(&shaders, counts),
             report: report::Report::new(&shaders),
             flight: flight::Flight::new(&shaders),
-            overlaps: overlaps::Overlaps::new(&shaders, counts.shift_sweeps),
         }
     }
 
@@ -288,8 +234,6 @@ impl Stages {
         self.solve.record(&mut step);
         self.report.record_pushes(&mut step, tumblers);
         self.flight.record(&mut step);
-        self.overlaps.record(&mut step);
-        self.report.record_instances(&mut step);
         step.dispatches
     }
 
@@ -309,6 +253,6 @@ impl Stages {
             small: false,
             dispatches: 0,
         };
-        self.report.record_instances(&mut recorder);
+        self.flight.record_instances(&mut recorder);
     }
 }

@@ -1,13 +1,11 @@
-//! What leaves a step (`report.wgsl`): stage 5, each tumbler's push from
-//! the balls, summed in a fixed order; and last, the instances the
-//! renderer draws.
+//! Stage 5, what the balls did to the tumblers (`report.wgsl`): each
+//! tumbler's push from the balls, summed in a fixed order.
 
 use super::{Recorder, Shaders};
 use crate::profile::Stage;
 
 pub struct Report {
     sum_tumbler_push: wgpu::ComputePipeline,
-    write_instances: wgpu::ComputePipeline,
 }
 
 impl Report {
@@ -15,7 +13,6 @@ impl Report {
         let module = shaders.module("report", &[], include_str!("report.wgsl"));
         Report {
             sum_tumbler_push: shaders.pipeline(&module, "sum_tumbler_push"),
-            write_instances: shaders.pipeline(&module, "write_instances"),
         }
     }
 
@@ -25,12 +22,6 @@ impl Report {
             if tumblers > 0 {
                 pass.workgroups(&self.sum_tumbler_push, tumblers, 1);
             }
-        });
-    }
-
-    pub fn record_instances(&self, step: &mut Recorder) {
-        step.stage(Stage::Instances, |pass| {
-            pass.over_balls(&self.write_instances)
         });
     }
 }

@@ -1,5 +1,5 @@
-// What leaves the step: each tumbler's push from the balls, summed in a
-// fixed order (no float atomics), and the instances the renderer draws.
+// What the balls did to the tumblers in the step: each tumbler's push
+// from the balls, summed in a fixed order (no float atomics).
 
 // Impulse, and the mass of the balls that pushed.
 var<workgroup> push_impulse: array<vec4<f32>, 256>;
@@ -66,19 +66,4 @@ fn sum_tumbler_push(
         tumbler_push[2u * t] = push_impulse[0];
         tumbler_push[2u * t + 1u] = vec4<f32>(push_moment[0], 0.0);
     }
-}
-
-@compute @workgroup_size(256)
-fn write_instances(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
-    if i >= params.count {
-        return;
-    }
-    if !alive(i) {
-        instances[2u * i] = vec4<f32>(0.0);
-        instances[2u * i + 1u] = vec4<f32>(0.0);
-        return;
-    }
-    instances[2u * i] = pos[i];
-    instances[2u * i + 1u] = vec4<f32>(palette[state[i] >> COLOR_SHIFT].xyz, 0.0);
 }

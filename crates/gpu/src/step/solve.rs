@@ -1,14 +1,27 @@
-//! Stage 4, the contact solver (`solve.wgsl`): gravity and the warm start
-//! given to the velocities, then Jacobi sweeps with mass splitting, a few
-//! a dispatch among each block of neighbouring balls (see `ball_at` in
-//! `common.wgsl`).
+//! Stage 4, the contact solver (`solve.wgsl`), from the velocities the
+//! impacts' last dispatch warm-started (`warm_start.wgsl`): Jacobi sweeps
+//! with mass splitting, a few a dispatch among each block of neighbouring
+//! balls (see `ball_at` in `common.wgsl`), that also shift the balls out
+//! of their overlaps.
 
-use super::{JacobiSweeps, Recorder, Shaders, SweepCounts};
+use super::{Recorder, Shaders};
 use crate::profile::Stage;
 
+/// How the solver sweeps a step.
+pub struct SweepCounts {
+    /// Dispatches, each running `block_sweeps` sweeps among each block of
+    /// neighbouring balls. Even: each reads one copy of the velocities and
+    /// writes the other, and the last must end in the first (see `vel_in`
+    /// in `common.wgsl`).
+    pub dispatches: u32,
+    pub block_sweeps: u32,
+}
+
 pub struct Solve {
-    warm_start: wgpu::ComputePipeline,
-    sweeps: JacobiSweeps,
+    /// The dispatches that read the first copy and those that read the
+    /// second, taken in turn.
+    each_way: [wgpu::ComputePipeline; 2],
+    dispatches: u32,
     in_one_group: wgpu::ComputePipeline,
 }
 
@@ -17,31 +30,29 @@ impl Solve {
         let module = shaders.module(
             "solve",
             &[
-                ("SOLVE_DISPATCHES", counts.solve_dispatches),
-                ("BLOCK_SWEEPS", counts.solve_block_sweeps),
+                ("SOLVE_DISPATCHES", counts.dispatches),
+                ("BLOCK_SWEEPS", counts.block_sweeps),
             ],
             include_str!("solve.wgsl"),
         );
         let pipeline = |entry: &str| shaders.pipeline(&module, entry);
         Solve {
-            warm_start: pipeline("warm_start"),
-            sweeps: JacobiSweeps::new(
-                counts.solve_dispatches,
-                pipeline,
-                ["solve_forth", "solve_back"],
-            ),
+            each_way: [pipeline("solve_forth"), pipeline("solve_back")],
+            dispatches: counts.dispatches,
             in_one_group: pipeline("solve_in_one_group"),
         }
     }
 
+    /// A workgroup a block in each dispatch, or a small world's in one.
     pub fn record(&self, step: &mut Recorder) {
         let small = step.small;
         step.stage(Stage::Solve, |pass| {
-            pass.over_balls(&self.warm_start);
             if small {
                 return pass.workgroups(&self.in_one_group, 1, 1);
             }
-            self.sweeps.record(pass);
+            for dispatch in 0..self.dispatches as usize {
+                pass.over_balls(&self.each_way[dispatch % 2]);
+            }
         });
     }
 }

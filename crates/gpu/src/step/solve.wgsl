@@ -18,6 +18,20 @@
 // work it out alike, from the same numbers in the same order (the
 // lower-numbered ball first), and keep the same impulse so far, so what
 // one gains the other loses to the bit.
+//
+// The same sweeps push out the balls' overlaps by position alone: each
+// ball carries a shift beside its velocity, which the flight adds to its
+// move and which makes no motion (as split impulses do, in Catto's
+// "Iterative Dynamics with Temporal Coherence", 2005, and in Bullet).
+// Each sweep gives a ball its share of each overlap it would have after
+// the step, moved at the velocities so far from where it is shifted to
+// (see `shift_out_of`), its mass split as for its pushes; so the shifts
+// meet what the velocities leave, and a pile's weight is passed down
+// through the blocks as its pushes are. The speculative margin of an
+// overlap is left: pushed out whole, resting balls would stand a hair
+// apart, fall back in and bounce, and a pile would never rest. The
+// solver's gaps are read at the shifted positions, so that no shift
+// closes a gap a velocity closes too.
 
 // Balls' weights a tumbler may hold up through one ball.
 const BODY_WEIGHTS: f32 = 4.0;
@@ -44,24 +58,40 @@ fn relaxation(shares: f32) -> f32 {
     return select(params.solve_relaxation, 1.0, shares <= 1.0);
 }
 
-// A ball as a sweep sees it: its velocity (w: inverse mass) and spin (w:
-// the most of its contacts that pushed so far, see `shares`).
+// A ball as a sweep sees it: its velocity (w: inverse mass), spin (w:
+// the most of its contacts that pushed so far, see `shares`) and shift.
 struct Seen {
     vel: vec4<f32>,
     spin: vec4<f32>,
+    shift: vec4<f32>,
 }
 
 // Ball i as the last sweep left it, in the copy a sweep `back` reads.
 fn seen_in(i: u32, back: bool) -> Seen {
-    return Seen(vel_in(i, back), spin_in(i, back));
+    return Seen(vel_in(i, back), spin_in(i, back), shift_in(i, back));
 }
 
-// Ball i's change of velocity and of spin, from its contacts, and how
-// many of them push.
+// Where ball i stands as a sweep sees it: moved by its shift so far.
+fn shifted(i: u32, seen: Seen) -> vec3<f32> {
+    return pos[i].xyz + seen.shift.xyz;
+}
+
+// Ball i's change of velocity, of spin and of shift, from its contacts,
+// and how many of them push.
 struct Push {
     velocity: vec3<f32>,
     spin: vec3<f32>,
+    shift: vec3<f32>,
     pushing: f32,
+}
+
+const NO_PUSH = Push(vec3<f32>(0.0), vec3<f32>(0.0), vec3<f32>(0.0), 0.0);
+
+// The part of an overlap `depth` deep (less the speculative margin, left)
+// that a sweep pushes out for a ball whose mass is split `contacts` ways
+// (its own or its partner's, the more; see `shares`).
+fn shift_share(depth: f32, contacts: f32) -> f32 {
+    return max(depth - params.grid.y, 0.0) * params.more.w / contacts;
 }
 
 // The contact of ball `i` kept in its slot `at`, with ball `j`, each as
@@ -80,9 +110,10 @@ fn solve_pair(i: u32, j: u32, at: u32, mine: Seen, theirs: Seen) -> Push {
     }
     let va = seen_a.vel;
     let vb = seen_b.vel;
-    let d = pa.xyz - pb.xyz;
+    let d = shifted(a, seen_a) - shifted(b, seen_b);
     let n = direction(d);
-    let goal = speculative_goal(length(d) - pa.w - pb.w);
+    let depth = pa.w + pb.w - length(d);
+    let goal = speculative_goal(-depth);
     // Each ball's mass split among its contacts.
     let share_a = shares(a, seen_a);
     let share_b = shares(b, seen_b);
@@ -99,19 +130,35 @@ fn solve_pair(i: u32, j: u32, at: u32, mine: Seen, theirs: Seen) -> Push {
     let change = (normal - total.w) * n + (friction - total.xyz);
     let im = vel[i].w;
     let pushing = select(0.0, 1.0, normal > 0.0);
+    let none = vec3<f32>(0.0);
     if first_is_mine {
-        return Push(change * im, cross(-pa.w * n, change) * inv_inertia(im, pa.w), pushing);
+        return Push(change * im, cross(-pa.w * n, change) * inv_inertia(im, pa.w), none, pushing);
     }
-    return Push(-change * im, cross(pb.w * n, -change) * inv_inertia(im, pb.w), pushing);
+    return Push(-change * im, cross(pb.w * n, -change) * inv_inertia(im, pb.w), none, pushing);
 }
 
-// Ball i's contacts with the room's walls, at velocity `v` and spin `w`,
-// its mass split `shares` ways.
-fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, shares: f32) -> Push {
-    let p = pos[i].xyz;
+// Ball i's shift out of ball j, each as the sweep sees it: its share of
+// the overlap they would have after the step at their velocities so far,
+// the lighter ball moved the further. Read after the step, so that the
+// shift meets what the velocities leave, as the flight will move them.
+fn shift_out_of(i: u32, j: u32, mine: Seen, theirs: Seen) -> vec3<f32> {
+    let ahead = shifted(i, mine) - shifted(j, theirs) + (mine.vel.xyz - theirs.vel.xyz) * dt();
+    let apart = length(ahead);
+    if apart <= 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let split = max(shares(i, mine), shares(j, theirs));
+    let depth = pos[i].w + pos[j].w - apart;
+    return ahead / apart * shift_share(depth, split) * mine.vel.w / (mine.vel.w + theirs.vel.w);
+}
+
+// Ball i's contacts with the room's walls, at velocity `v`, spin `w` and
+// shifted to `p`, its mass split `shares` ways. (No shift: the room
+// holds a shifted ball within it, see `pushed`.)
+fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, p: vec3<f32>, shares: f32) -> Push {
     let r = pos[i].w;
     let im = vel[i].w;
-    var push = Push(vec3<f32>(0.0), vec3<f32>(0.0), 0.0);
+    var push = NO_PUSH;
     for (var axis = 0u; axis < 3u; axis++) {
         if !touches_wall(state[i], axis) {
             continue;
@@ -134,13 +181,15 @@ fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, shares: f32) -> Push {
     return push;
 }
 
-// Ball i's contact with a body, at velocity `v`, its mass split `shares` ways.
-fn solve_body(i: u32, v: vec3<f32>, shares: f32) -> Push {
+// Ball i's contact with a body, at velocity `v` and shifted to `p`, its
+// mass split `shares` ways. The body stands still within the step, so
+// the ball alone is shifted out of it (but not out of the fireball, which
+// passes through).
+fn solve_body(i: u32, v: vec3<f32>, p: vec3<f32>, shares: f32) -> Push {
     let b = body_of[i];
     if b == NONE {
-        return Push(vec3<f32>(0.0), vec3<f32>(0.0), 0.0);
+        return NO_PUSH;
     }
-    let p = pos[i].xyz;
     let r = pos[i].w;
     let im = vel[i].w;
     let body = bodies[b];
@@ -149,7 +198,8 @@ fn solve_body(i: u32, v: vec3<f32>, shares: f32) -> Push {
     let point = body.sphere.xyz + n * body.sphere.w;
     let vb = body_point_velocity(body, point);
     let total = body_impulse[i];
-    let goal = speculative_goal(length(d) - r - body.sphere.w);
+    let depth = r + body.sphere.w - length(d);
+    let goal = speculative_goal(-depth);
     let approach = -dot(vel_start[i].xyz - vb, n);
     // The tumbler stands still within the step, but the push is shared
     // as if it gave way: its effective mass at the point counts.
@@ -161,28 +211,46 @@ fn solve_body(i: u32, v: vec3<f32>, shares: f32) -> Push {
     let k = (shares * im + body_im) / relaxation(shares);
     let normal = clamp(total.w + (goal - dot(v - vb, n)) / k, 0.0, most);
     body_impulse[i] = vec4<f32>(total.x, 0.0, 0.0, normal);
-    return Push((normal - total.w) * n * im, vec3<f32>(0.0), select(0.0, 1.0, normal > 0.0));
+    // Out of where it would stand after the step, as `shift_out_of`.
+    var apart = vec3<f32>(0.0);
+    let ahead = d + v * dt();
+    if body.info.x != FIREBALL && length(ahead) > 0.0 {
+        let overlap = r + body.sphere.w - length(ahead);
+        apart = normalize(ahead) * shift_share(overlap, shares);
+    }
+    return Push((normal - total.w) * n * im, vec3<f32>(0.0), apart, select(0.0, 1.0, normal > 0.0));
 }
 
 // Ball i's contacts with the walls and its body.
 fn solve_own(i: u32, mine: Seen) -> Push {
     let split = shares(i, mine);
-    var push = solve_walls(i, mine.vel.xyz, mine.spin.xyz, split);
-    add_push(&push, solve_body(i, mine.vel.xyz, split));
+    let p = shifted(i, mine);
+    var push = solve_walls(i, mine.vel.xyz, mine.spin.xyz, p, split);
+    add_push(&push, solve_body(i, mine.vel.xyz, p, split));
     return push;
 }
 
 fn add_push(push: ptr<function, Push>, more: Push) {
     (*push).velocity += more.velocity;
     (*push).spin += more.spin;
+    (*push).shift += more.shift;
     (*push).pushing += more.pushing;
 }
 
-// Ball i after a sweep's `push`, its shares kept (see `shares`).
+// Ball i after a sweep's `push`, its shares kept (see `shares`), shifted
+// no further than the room holds it.
 fn pushed(i: u32, mine: Seen, push: Push) -> Seen {
+    let p = pos[i].xyz;
+    let r = pos[i].w;
+    let held = clamp(
+        p + mine.shift.xyz + push.shift,
+        params.room_min.xyz + r,
+        params.room_max.xyz - r,
+    );
     return Seen(
         vec4<f32>(mine.vel.xyz + push.velocity, mine.vel.w),
         vec4<f32>(mine.spin.xyz + push.spin, max(shares(i, mine), push.pushing)),
+        vec4<f32>(held - p, 0.0),
     );
 }
 
@@ -220,12 +288,13 @@ fn solve_block(g: u32, t: u32, back: bool) -> bool {
     workgroupBarrier();
     var first_moved = false;
     for (var sweep = 0u; sweep < BLOCK_SWEEPS; sweep++) {
-        var after = Seen(vec4<f32>(0.0), vec4<f32>(0.0));
+        var after = Seen(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
         if solved {
             let before = block_balls[t];
             after = sweep_in_block(i, g, before, sweep == 0u, back);
             let moved = length(after.vel.xyz - before.vel.xyz)
-                + pos[i].w * length(after.spin.xyz - before.spin.xyz);
+                + pos[i].w * length(after.spin.xyz - before.spin.xyz)
+                + length(after.shift.xyz - before.shift.xyz) / dt();
             if moved > SETTLED_SPEED {
                 atomicOr(&block_moving, 1u);
             }
@@ -246,12 +315,14 @@ fn solve_block(g: u32, t: u32, back: bool) -> bool {
     if i != NONE {
         put_vel(i, back, block_balls[t].vel);
         put_spin(i, back, block_balls[t].spin);
+        put_shift(i, back, block_balls[t].shift);
     }
     return first_moved;
 }
 
 // A sweep that changes no ball's velocity (or its surface's speed from
-// spin) by more than this (m/s) ends its block's sweeps in a dispatch.
+// spin, or its shift over the step) by more than this (m/s) ends its
+// block's sweeps in a dispatch.
 const SETTLED_SPEED: f32 = 1e-5;
 // Whether any of the block's balls moved more than SETTLED_SPEED in this
 // sweep, and a copy of it read alike by every thread.
@@ -263,75 +334,29 @@ fn sweep_in_block(i: u32, g: u32, mine: Seen, first: bool, back: bool) -> Seen {
     var push = solve_own(i, mine);
     for (var k = 0u; k < slot_count(state[i]); k++) {
         let at = i * SLOTS + k;
-        if slot_mirror[at] == NONE {
-            continue;
-        }
         let j = slot_other[at];
         let near = place_in_block(j, g);
-        if near != NONE {
-            add_push(&push, solve_pair(i, j, at, mine, block_balls[near]));
-        } else if first {
-            add_push(&push, solve_pair(i, j, at, mine, seen_in(j, back)));
-        } else {
+        // Another block's ball is seen in the first sweep only.
+        if near == NONE && !first {
             push.pushing += select(0.0, 1.0, impulse_at(at).w > 0.0);
+            continue;
+        }
+        var theirs: Seen;
+        if near != NONE {
+            theirs = block_balls[near];
+        } else {
+            theirs = seen_in(j, back);
+        }
+        // A contact its other ball does not list (its nearest were nearer)
+        // is not solved, but this ball is shifted out of it.
+        if slot_mirror[at] != NONE {
+            add_push(&push, solve_pair(i, j, at, mine, theirs));
+        }
+        if alive(j) {
+            push.shift += shift_out_of(i, j, mine, theirs);
         }
     }
     return pushed(i, mine, push);
-}
-
-// After the impacts, gravity and each ball's contacts' warm impulses are
-// given to its velocity. A ball reads only its own contacts here.
-@compute @workgroup_size(256)
-fn warm_start(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = ball_index(id);
-    if i >= params.count || !alive(i) {
-        return;
-    }
-    let p = pos[i].xyz;
-    let r = pos[i].w;
-    let im = vel[i].w;
-    var dv = gravity() * dt();
-    var dw = vec3<f32>(0.0);
-    if (state[i] & SOLVED) != 0u {
-        fold_body_impact(i);
-        var pressing = 0u;
-        for (var k = 0u; k < slot_count(state[i]); k++) {
-            let j = slot_other[i * SLOTS + k];
-            if slot_mirror[i * SLOTS + k] == NONE {
-                continue;
-            }
-            let a = min(i, j);
-            let n = direction(pos[a].xyz - pos[i + j - a].xyz);
-            let total = impulse_at(i * SLOTS + k);
-            // Pushing already, or closing on its margin within the step.
-            let d = p - pos[j].xyz;
-            let closing = max(0.0, -dot(vel_start[i].xyz - vel_start[j].xyz, direction(d)));
-            let gap = length(d) - r - pos[j].w;
-            pressing += u32(total.w > 0.0 || gap - closing * dt() < params.grid.y);
-            let on_i = select(-1.0, 1.0, i == a) * (total.w * n + total.xyz);
-            dv += on_i * im;
-            dw += cross(r * direction(pos[j].xyz - p), on_i) * inv_inertia(im, r);
-        }
-        for (var axis = 0u; axis < 3u; axis++) {
-            if touches_wall(state[i], axis) {
-                let n = nearest_wall(p, r, axis).xyz;
-                let total = wall_impulse[i * 3u + axis];
-                let on_i = total.w * n + total.xyz;
-                dv += on_i * im;
-                dw += cross(-r * n, on_i) * inv_inertia(im, r);
-                pressing += 1u;
-            }
-        }
-        let b = body_of[i];
-        if b != NONE {
-            let n = direction(p - bodies[b].sphere.xyz);
-            dv += body_impulse[i].w * n * im;
-            pressing += 1u;
-        }
-        state[i] = (state[i] & ~(31u << PRESSING_SHIFT)) | (min(pressing, 31u) << PRESSING_SHIFT);
-    }
-    vel[i] = vec4<f32>(vel[i].xyz + dv, im);
-    spin[i] = vec4<f32>(spin[i].xyz + dw, 0.0);
 }
 
 // A small world's dispatches in one workgroup (see `SMALL_GROUP` in
