@@ -30,8 +30,9 @@
 // through the blocks as its pushes are. The speculative margin of an
 // overlap is left: pushed out whole, resting balls would stand a hair
 // apart, fall back in and bounce, and a pile would never rest. The
-// solver's gaps are read at the shifted positions, so that no shift
-// closes a gap a velocity closes too.
+// pushes read their gaps where the balls stand, not where they are
+// shifted to: a shift that opened a gap would let a velocity close it,
+// and the shifts, which read the velocities, would open it further.
 
 // Balls' weights a tumbler may hold up through one ball.
 const BODY_WEIGHTS: f32 = 4.0;
@@ -110,10 +111,9 @@ fn solve_pair(i: u32, j: u32, at: u32, mine: Seen, theirs: Seen) -> Push {
     }
     let va = seen_a.vel;
     let vb = seen_b.vel;
-    let d = shifted(a, seen_a) - shifted(b, seen_b);
+    let d = pa.xyz - pb.xyz;
     let n = direction(d);
-    let depth = pa.w + pb.w - length(d);
-    let goal = speculative_goal(-depth);
+    let goal = speculative_goal(length(d) - pa.w - pb.w);
     // Each ball's mass split among its contacts.
     let share_a = shares(a, seen_a);
     let share_b = shares(b, seen_b);
@@ -152,10 +152,11 @@ fn shift_out_of(i: u32, j: u32, mine: Seen, theirs: Seen) -> vec3<f32> {
     return ahead / apart * shift_share(depth, split) * mine.vel.w / (mine.vel.w + theirs.vel.w);
 }
 
-// Ball i's contacts with the room's walls, at velocity `v`, spin `w` and
-// shifted to `p`, its mass split `shares` ways. (No shift: the room
-// holds a shifted ball within it, see `pushed`.)
-fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, p: vec3<f32>, shares: f32) -> Push {
+// Ball i's contacts with the room's walls, at velocity `v` and spin `w`,
+// its mass split `shares` ways. (No shift: the room holds a shifted ball
+// within it, see `pushed`.)
+fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, shares: f32) -> Push {
+    let p = pos[i].xyz;
     let r = pos[i].w;
     let im = vel[i].w;
     var push = NO_PUSH;
@@ -181,15 +182,16 @@ fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, p: vec3<f32>, shares: f32) ->
     return push;
 }
 
-// Ball i's contact with a body, at velocity `v` and shifted to `p`, its
+// Ball i's contact with a body, at velocity `v` and shifted to `to`, its
 // mass split `shares` ways. The body stands still within the step, so
 // the ball alone is shifted out of it (but not out of the fireball, which
 // passes through).
-fn solve_body(i: u32, v: vec3<f32>, p: vec3<f32>, shares: f32) -> Push {
+fn solve_body(i: u32, v: vec3<f32>, to: vec3<f32>, shares: f32) -> Push {
     let b = body_of[i];
     if b == NONE {
         return NO_PUSH;
     }
+    let p = pos[i].xyz;
     let r = pos[i].w;
     let im = vel[i].w;
     let body = bodies[b];
@@ -198,8 +200,7 @@ fn solve_body(i: u32, v: vec3<f32>, p: vec3<f32>, shares: f32) -> Push {
     let point = body.sphere.xyz + n * body.sphere.w;
     let vb = body_point_velocity(body, point);
     let total = body_impulse[i];
-    let depth = r + body.sphere.w - length(d);
-    let goal = speculative_goal(-depth);
+    let goal = speculative_goal(length(d) - r - body.sphere.w);
     let approach = -dot(vel_start[i].xyz - vb, n);
     // The tumbler stands still within the step, but the push is shared
     // as if it gave way: its effective mass at the point counts.
@@ -213,7 +214,7 @@ fn solve_body(i: u32, v: vec3<f32>, p: vec3<f32>, shares: f32) -> Push {
     body_impulse[i] = vec4<f32>(total.x, 0.0, 0.0, normal);
     // Out of where it would stand after the step, as `shift_out_of`.
     var apart = vec3<f32>(0.0);
-    let ahead = d + v * dt();
+    let ahead = to + v * dt() - body.sphere.xyz;
     if body.info.x != FIREBALL && length(ahead) > 0.0 {
         let overlap = r + body.sphere.w - length(ahead);
         apart = normalize(ahead) * shift_share(overlap, shares);
@@ -224,9 +225,8 @@ fn solve_body(i: u32, v: vec3<f32>, p: vec3<f32>, shares: f32) -> Push {
 // Ball i's contacts with the walls and its body.
 fn solve_own(i: u32, mine: Seen) -> Push {
     let split = shares(i, mine);
-    let p = shifted(i, mine);
-    var push = solve_walls(i, mine.vel.xyz, mine.spin.xyz, p, split);
-    add_push(&push, solve_body(i, mine.vel.xyz, p, split));
+    var push = solve_walls(i, mine.vel.xyz, mine.spin.xyz, split);
+    add_push(&push, solve_body(i, mine.vel.xyz, shifted(i, mine), split));
     return push;
 }
 
