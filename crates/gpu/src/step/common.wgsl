@@ -296,18 +296,6 @@ fn touches_wall(s: u32, axis: u32) -> bool {
     return ((s >> (WALL_SHIFT + axis)) & 1u) != 0u;
 }
 
-// How many contacts a ball's shift out of its overlaps sums (see
-// `shift_share`): its share of each is this many times smaller, so that
-// together they do not overshoot.
-fn contact_count(i: u32) -> u32 {
-    let s = state[i];
-    var n = slot_count(s) + countOneBits((s >> WALL_SHIFT) & 7u);
-    if body_of[i] != NONE {
-        n += 1u;
-    }
-    return max(n, 1u);
-}
-
 // How easily a push along `n` at `point` moves body `b` there: the inverse
 // of its effective mass, turning about its pivot.
 fn body_inverse_mass(b: Body, point: vec3<f32>, n: vec3<f32>) -> f32 {

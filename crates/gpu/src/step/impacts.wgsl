@@ -65,20 +65,23 @@ fn impacts_in_one_group(@builtin(local_invocation_index) t: u32) {
 // contacts, which every later pass reads; the last dispatch, which only
 // ends a round, then starts the solver (see warm_start.wgsl).
 fn meet(i: u32, round: u32) {
+    var v: vec4<f32>;
     if round == 0u {
         note_mirrors(i);
+        v = vel[i];
     } else {
         let bounce = bounce_in(i, round - 1u);
+        v = bounce.velocity;
         body_impact[i] += bounce.push_on_body;
         if round < IMPACT_ROUNDS {
-            put_vel(i, reads_back(round - 1u), bounce.velocity);
+            put_vel(i, reads_back(round - 1u), v);
         } else if alive(i) {
             // The first copy, as the solver's sweeps start from it.
-            warm_start(i, bounce.velocity);
+            warm_start(i, v);
         }
     }
     if round < IMPACT_ROUNDS {
-        let first = first_contact_of(i, round);
+        let first = first_contact_of(i, round, v.xyz);
         first_contact[first_place(i, round)] = first;
         if first != NONE {
             atomicAdd(&impact_count[round], 1u);
@@ -201,14 +204,13 @@ fn ranks_before(a: Rank, b: Rank) -> bool {
     return a.high < b.high;
 }
 
-// The contact ball i meets first in round `round`, at the velocities it
-// and its neighbours start it with: a slot, FIRST_WALL + axis,
+// The contact ball i meets first in round `round`, at the velocity `v` it
+// starts it with and those its neighbours do: a slot, FIRST_WALL + axis,
 // FIRST_BODY, or NONE.
-fn first_contact_of(i: u32, round: u32) -> u32 {
+fn first_contact_of(i: u32, round: u32, v: vec3<f32>) -> u32 {
     if !in_solver(i) {
         return NONE;
     }
-    let v = velocity_in(i, round).xyz;
     var first = NONE;
     var soonest = Rank(NEVER, NONE, NONE);
     for (var k = 0u; k < slot_count(state[i]); k++) {
