@@ -373,11 +373,13 @@ fn put_shift(i: u32, back: bool, s: vec4<f32>) {
 }
 
 // Balls in a block: a workgroup's sweeps in a dispatch work on the balls
-// at places WORKGROUP * g .. WORKGROUP * (g + 1) of `cell_balls`, a clump
-// of neighbours (see `cell_id`), and keep them in workgroup memory between
-// sweeps, so that one dispatch runs several sweeps among them; a contact
-// with a ball of another block is worked out once a dispatch, from the
-// copy the dispatch started with. The solver sweeps so (see solve.wgsl).
+// at places WORKGROUP * g - start .. WORKGROUP * (g + 1) - start of
+// `cell_balls`, a clump of neighbours (see `cell_id`), and keep them in
+// workgroup memory between sweeps, so that one dispatch runs several
+// sweeps among them; a contact with a ball of another block is worked out
+// once a dispatch, from the copy the dispatch started with. The solver
+// sweeps so (see solve.wgsl), its blocks starting in turn at 0 and half a
+// block on (see `block_start`).
 fn block_index(group: vec3<u32>) -> u32 {
     return group.x + group.y * MAX_GROUPS;
 }
@@ -390,10 +392,19 @@ fn ball_at(place: u32) -> u32 {
     return NONE;
 }
 
+// The ball thread t of block g holds, the blocks starting at `start`.
+fn ball_in_block(g: u32, t: u32, start: u32) -> u32 {
+    let place = g * WORKGROUP + t;
+    if place < start {
+        return NONE;
+    }
+    return ball_at(place - start);
+}
+
 // Where ball `j` is kept in block `g`'s workgroup memory, or NONE if it
-// is another block's.
-fn place_in_block(j: u32, g: u32) -> u32 {
-    let place = ball_rank[j];
+// is another block's, the blocks starting at `start`.
+fn place_in_block(j: u32, g: u32, start: u32) -> u32 {
+    let place = ball_rank[j] + start;
     if place / WORKGROUP == g {
         return place % WORKGROUP;
     }

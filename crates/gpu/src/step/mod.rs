@@ -163,6 +163,11 @@ impl Pass<'_, '_> {
         self.workgroups(pipeline, x, y);
     }
 
+    /// The balls in use.
+    fn balls(&self) -> u64 {
+        self.balls
+    }
+
     /// A thread for each ball in use.
     fn over_balls(&mut self, pipeline: &wgpu::ComputePipeline) {
         self.over(pipeline, self.balls);

@@ -5,6 +5,7 @@
 //! of their overlaps.
 
 use super::{Recorder, Shaders};
+use crate::layout::WORKGROUP;
 use crate::profile::Stage;
 
 /// How the solver sweeps a step.
@@ -50,8 +51,12 @@ impl Solve {
             if small {
                 return pass.workgroups(&self.in_one_group, 1, 1);
             }
+            // The back dispatches' blocks start half a block on (see
+            // `block_start` in the WGSL): one block more.
+            let balls = pass.balls();
             for dispatch in 0..self.dispatches as usize {
-                pass.over_balls(&self.each_way[dispatch % 2]);
+                let threads = balls + u64::from(WORKGROUP / 2) * (dispatch % 2) as u64;
+                pass.over(&self.each_way[dispatch % 2], threads);
             }
         });
     }

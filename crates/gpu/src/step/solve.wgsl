@@ -254,7 +254,7 @@ fn pushed(i: u32, mine: Seen, push: Push) -> Seen {
     );
 }
 
-// The balls of one block (see `ball_at`) as workgroup memory holds them
+// The balls of one block (see `ball_in_block`) as workgroup memory holds them
 // between its sweeps.
 var<workgroup> block_balls: array<Seen, WORKGROUP>;
 
@@ -277,7 +277,7 @@ fn solve_back(@builtin(workgroup_id) group: vec3<u32>, @builtin(local_invocation
 // SETTLED_SPEED: a pile at rest, warm-started, settles in a sweep or two.
 // Returns whether the first sweep moved any ball by more than that.
 fn solve_block(g: u32, t: u32, back: bool) -> bool {
-    let i = ball_at(g * WORKGROUP + t);
+    let i = ball_in_block(g, t, block_start(back));
     let solved = in_solver(i);
     if i != NONE {
         block_balls[t] = seen_in(i, back);
@@ -320,6 +320,20 @@ fn solve_block(g: u32, t: u32, back: bool) -> bool {
     return first_moved;
 }
 
+// Where the blocks start in cell order: the dispatches that read the
+// second copy take blocks half a block on from those of the first, so that
+// a contact across one block's edge lies within the other's, and is
+// worked out in every sweep of every other dispatch, not in its first
+// sweep alone.
+fn block_start(back: bool) -> u32 {
+    return select(0u, WORKGROUP / 2u, back);
+}
+
+// The blocks a dispatch sweeps.
+fn blocks(back: bool) -> u32 {
+    return (params.count + block_start(back) + WORKGROUP - 1u) / WORKGROUP;
+}
+
 // A sweep that changes no ball's velocity (or its surface's speed from
 // spin, or its shift over the step) by more than this (m/s) ends its
 // block's sweeps in a dispatch.
@@ -335,7 +349,7 @@ fn sweep_in_block(i: u32, g: u32, mine: Seen, first: bool, back: bool) -> Seen {
     for (var k = 0u; k < slot_count(state[i]); k++) {
         let at = i * SLOTS + k;
         let j = slot_other[at];
-        let near = place_in_block(j, g);
+        let near = place_in_block(j, g, block_start(back));
         // Another block's ball is seen in the first sweep only.
         if near == NONE && !first {
             push.pushing += select(0.0, 1.0, impulse_at(at).w > 0.0);
@@ -366,13 +380,13 @@ fn sweep_in_block(i: u32, g: u32, mine: Seen, first: bool, back: bool) -> Seen {
 // copy.
 @compute @workgroup_size(256)
 fn solve_in_one_group(@builtin(local_invocation_index) t: u32) {
-    let blocks = (params.count + WORKGROUP - 1u) / WORKGROUP;
     for (var dispatch = 0u; dispatch < SOLVE_DISPATCHES; dispatch++) {
+        let back = dispatch % 2u == 1u;
         // Every thread holds the same answer: each block's is read
         // through workgroupUniformLoad.
         var any_moved = false;
-        for (var g = 0u; g < blocks; g++) {
-            any_moved = solve_block(g, t, dispatch % 2u == 1u) || any_moved;
+        for (var g = 0u; g < blocks(back); g++) {
+            any_moved = solve_block(g, t, back) || any_moved;
         }
         storageBarrier();
         if dispatch % 2u == 1u && !any_moved {
