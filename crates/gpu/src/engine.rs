@@ -589,6 +589,8 @@ impl GpuBalls {
                 point: DVec3::new(px.into(), py.into(), pz.into()),
                 normal: DVec3::new(nx.into(), ny.into(), nz.into()),
                 speed: speed.into(),
+                // The GPU engine does not say when within the step.
+                within_step: 0.0,
             });
         }
         // The atomics set the order they were written in; the ball's number

@@ -61,6 +61,9 @@ pub struct Event {
     pub normal: DVec3,
     /// Approach speed along the normal just before the impact (m/s).
     pub speed: f64,
+    /// When it happened, in seconds after the step's start (0 to the
+    /// step's `dt`): what places its sound to the sample.
+    pub within_step: f64,
 }
 
 impl EventKind {

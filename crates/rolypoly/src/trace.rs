@@ -448,12 +448,14 @@ mod tests {
                 point: DVec3::new(1.0, 0.0, 2.0),
                 normal: DVec3::Y,
                 speed: 1.5,
+                within_step: 0.0,
             },
             Event {
                 kind: EventKind::BallBall { a: 1, b: 2 },
                 point: DVec3::ZERO,
                 normal: DVec3::X,
                 speed: 0.25,
+                within_step: 0.0,
             },
         ];
         let lines = lines(&world, &events);

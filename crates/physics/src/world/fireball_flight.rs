@@ -18,7 +18,8 @@ impl World {
         let h = dt / substeps as f64;
         let shape = &self.shape;
         let friction = self.config.tumblers.floor_friction;
-        for _ in 0..substeps {
+        for substep in 1..=substeps {
+            let within_step = substep as f64 * h;
             f.position += f.velocity * h;
             for s in Surface::ALL {
                 let n = s.inward_normal();
@@ -33,6 +34,7 @@ impl World {
                             point: f.position - n * f.radius,
                             normal: n,
                             speed: -vn,
+                            within_step,
                         });
                     }
                 }
@@ -57,6 +59,7 @@ impl World {
                         point: self.balls.position[i] + n * self.balls.radius[i],
                         normal: n,
                         speed: (-vn).max(0.0),
+                        within_step,
                     });
                     continue;
                 }
@@ -73,6 +76,7 @@ impl World {
                         point: self.balls.position[i] + n * self.balls.radius[i],
                         normal: n,
                         speed: -vn,
+                        within_step,
                     });
                 }
             }
@@ -107,6 +111,7 @@ impl World {
                             point,
                             normal: n,
                             speed: -vn,
+                            within_step,
                         });
                     }
                 }

@@ -106,6 +106,7 @@ impl World {
                         point: x - r * n,
                         normal: n,
                         speed,
+                        within_step: dt - left,
                     });
                 }
             }

@@ -10,6 +10,7 @@ impl World {
     /// Events and colours from the contacts that pushed this step.
     pub(super) fn report_contacts(&mut self) {
         let threshold = self.config.solver.event_threshold;
+        let dt = self.config.solver.dt;
         let hits = &mut self.scratch.picked_pairs;
         let hit = |p: &Pair| p.pushed && -p.approach > threshold;
         self.contacts.copy_pairs_where(hit, hits);
@@ -21,6 +22,7 @@ impl World {
                 point: self.balls.position[j] + p.normal * (self.balls.radius[j] + 0.5 * gap),
                 normal: p.normal,
                 speed: -p.approach,
+                within_step: closing_time(p.gap, p.approach, dt),
             });
         }
         for c in &self.contacts.walls {
@@ -38,6 +40,7 @@ impl World {
                 point: self.room.foot(s, self.balls.position[i]),
                 normal: c.normal(),
                 speed: -c.approach,
+                within_step: closing_time(c.gap, c.approach, dt),
             });
         }
         for c in &self.contacts.tumbler_contacts {
@@ -60,7 +63,14 @@ impl World {
                 point: c.point,
                 normal: c.normal,
                 speed: -c.approach,
+                within_step: closing_time(c.gap, c.approach, dt),
             });
         }
     }
+}
+
+/// When a contact the solver pushed met, seconds into a step of `dt`: its
+/// gap closed at its approach speed (an overlap met at the start).
+fn closing_time(gap: f64, approach: f64, dt: f64) -> f64 {
+    (gap.max(0.0) / (-approach).max(f64::MIN_POSITIVE)).min(dt)
 }

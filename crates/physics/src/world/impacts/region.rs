@@ -373,6 +373,7 @@ impl Run<'_> {
                 point: centre_j + n * fixed.radius[j],
                 normal: n,
                 speed: closing,
+                within_step: t,
             });
         }
         self.note_impact(i, t);
@@ -422,6 +423,7 @@ impl Run<'_> {
                 point: fixed.room.foot(s, centre),
                 normal: n,
                 speed,
+                within_step: t,
             });
         }
         self.note_impact(i, t);
