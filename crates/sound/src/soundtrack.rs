@@ -22,8 +22,10 @@ use crate::voices::{Body, Strike, Voices};
 /// The characteristic impedance of air, ρ c (Pa s/m): the pressure a
 /// surface moving at 1 m/s radiates, before spreading.
 const AIR_IMPEDANCE: f64 = 413.0;
+/// The fireball's side of an impact: it roars, but is not struck.
+const FIREBALL: Body = Body::Ball(usize::MAX);
 /// The pressure (Pa) a sample of 1.0 stands for.
-const FULL_SCALE_PASCALS: f64 = 100.0;
+const FULL_SCALE_PASCALS: f64 = 400.0;
 /// The floor's boards: side (m) and thickness (m).
 const FLOOR_BOARD: (f64, f64) = (1.0, 0.022);
 /// The walls' and ceiling's boards, between studs.
@@ -34,24 +36,6 @@ const BELL_MASS: f64 = 0.05;
 const BELL_RADIUS: f64 = 0.025;
 /// The clapper's ball's radius (m); it is steel.
 const CLAPPER_RADIUS: f64 = 0.004;
-
-/// What a body sounds like: its modes, and the output a unit impulse
-/// gives a mode of weight 1 at 1 m (full scale per N s): the surface
-/// velocity 1/m radiated from a body of size `size`, spreading as size /
-/// distance.
-struct Sounding {
-    modes: Vec<Mode>,
-    loudness: f64,
-}
-
-impl Sounding {
-    fn new(modes: Vec<Mode>, mass: f64, size: f64) -> Sounding {
-        Sounding {
-            modes,
-            loudness: AIR_IMPEDANCE * size / (mass * FULL_SCALE_PASCALS),
-        }
-    }
-}
 
 /// The sound of a run, made a step at a time.
 pub struct Soundtrack {
@@ -138,8 +122,8 @@ impl Soundtrack {
             return;
         }
         for event in events {
-            for strike in self.strikes_of(world, event, offset) {
-                self.strike(world, &strike, listener);
+            for strike in self.strikes_of(world, event, offset).iter().flatten() {
+                self.strike(world, strike, listener);
             }
         }
         let mut chimed = std::mem::take(&mut self.chimed);
@@ -183,14 +167,14 @@ impl Soundtrack {
         let sample_rate = self.sample_rate;
         let config = &self.config;
         self.voices.strike(strike, listener, || {
-            let sounding = sounding(config, world, strike.body);
-            ModalBank::new(&sounding.modes, sounding.loudness, sample_rate)
+            let modes = modes_of(config, world, strike.body);
+            ModalBank::new(&modes, strike.loudness, sample_rate)
         });
     }
 
     /// The strikes of `event`, a step that began `offset` seconds after the
     /// block's start.
-    fn strikes_of(&self, world: &World, event: &Event, offset: f64) -> Vec<Strike> {
+    fn strikes_of(&self, world: &World, event: &Event, offset: f64) -> [Option<Strike>; 2] {
         let at = offset + event.within_step;
         let config = world.config();
         let balls = world.balls();
@@ -220,7 +204,7 @@ impl Soundtrack {
             point: event.point,
         };
         let fireball = world.fireball().map(|f| Body3 {
-            body: Body::Ball(usize::MAX),
+            body: FIREBALL,
             mass: f.mass,
             radius: f.radius,
             material: self.config.balls.properties(),
@@ -244,7 +228,7 @@ impl Soundtrack {
             }
         };
         let (Some(a), Some(b)) = (first, second) else {
-            return Vec::new();
+            return [None, None];
         };
         let mass = reduced(a.mass, b.mass);
         let contact = Contact {
@@ -254,18 +238,16 @@ impl Soundtrack {
         };
         let impulse = mass * (1.0 + restitution) * event.speed;
         let duration = contact.duration(event.speed);
-        [a, b]
-            .into_iter()
-            .filter(|body| body.body != Body::Ball(usize::MAX))
-            .map(|body| Strike {
+        [a, b].map(|body| {
+            (body.body != FIREBALL).then(|| Strike {
                 body: body.body,
                 point: body.point,
                 at,
                 duration,
                 impulse,
-                loudness: sounding(&self.config, world, body.body).loudness,
+                loudness: loudness(&self.config, world, body.body),
             })
-            .collect()
+        })
     }
 
     /// The strike of a bell's clapper, at `at` seconds from the block's
@@ -285,7 +267,7 @@ impl Soundtrack {
             at,
             duration: contact.duration(chime.speed),
             impulse: chime.impulse,
-            loudness: sounding(&self.config, world, body).loudness,
+            loudness: loudness(&self.config, world, body),
         }
     }
 }
@@ -341,32 +323,48 @@ fn board_of(s: Surface, point: DVec3, _config: &SoundConfig) -> Body {
     Body::Board(s.index(), (u / side).floor() as i64, (v / side).floor() as i64)
 }
 
-/// What `body` sounds like, from the world's sizes and masses and
-/// `config`'s materials.
-fn sounding(config: &SoundConfig, world: &World, body: Body) -> Sounding {
+/// The mass (kg) and radiating size (m) of `body`.
+fn mass_and_size(config: &SoundConfig, world: &World, body: Body) -> (f64, f64) {
     match body {
         Body::Ball(i) => {
             let balls = world.balls();
-            let (r, m) = (balls.radii()[i], balls.masses()[i]);
-            Sounding::new(modes::sphere(r, &config.balls.properties()), m, r)
+            (balls.masses()[i], balls.radii()[i])
         }
         Body::Board(s, ..) => {
             let s = Surface::ALL[s];
-            let material = surface_material(s, config);
             let (side, thickness) = board_size(s);
-            let mass = material.density * thickness * side * side;
-            Sounding::new(modes::plate(side, thickness, &material), mass, 0.5 * side)
+            let density = surface_material(s, config).density;
+            (density * thickness * side * side, 0.5 * side)
         }
         Body::Shell(_) => {
             let shape = world.tumbler_shape();
-            let r = shape.bottom_radius;
-            let modes = modes::shell(r, &config.tumblers.properties());
-            Sounding::new(modes, shape.mass, r)
+            (shape.mass, shape.bottom_radius)
         }
-        Body::Bell(_) => Sounding::new(
-            modes::bell(BELL_NOTE, &crate::Material::Brass.properties()),
-            BELL_MASS,
-            BELL_RADIUS,
+        Body::Bell(_) => (BELL_MASS, BELL_RADIUS),
+    }
+}
+
+/// The output a unit impulse gives a mode of weight 1 of `body` at 1 m
+/// (full scale per N s): its surface's velocity 1/m radiated from its
+/// size, spreading as size / distance.
+fn loudness(config: &SoundConfig, world: &World, body: Body) -> f64 {
+    let (mass, size) = mass_and_size(config, world, body);
+    AIR_IMPEDANCE * size / (mass * FULL_SCALE_PASCALS)
+}
+
+/// `body`'s modes, from the world's sizes and `config`'s materials.
+fn modes_of(config: &SoundConfig, world: &World, body: Body) -> Vec<Mode> {
+    match body {
+        Body::Ball(i) => modes::sphere(world.balls().radii()[i], &config.balls.properties()),
+        Body::Board(s, ..) => {
+            let s = Surface::ALL[s];
+            let (side, thickness) = board_size(s);
+            modes::plate(side, thickness, &surface_material(s, config))
+        }
+        Body::Shell(_) => modes::shell(
+            world.tumbler_shape().bottom_radius,
+            &config.tumblers.properties(),
         ),
+        Body::Bell(_) => modes::bell(BELL_NOTE, &crate::Material::Brass.properties()),
     }
 }

@@ -15,6 +15,11 @@ pub const MAX_VOICES: usize = 64;
 /// Below this amplitude (full scale), a voice has fallen silent: -100 dBFS.
 const SILENT: f32 = 1e-5;
 
+/// How much louder (amplitude) than the quietest voice a strike must be to
+/// take its place: 6 dB, so that a crowd of like strikes merges into the
+/// bed rather than cutting each other off.
+const STEAL_MARGIN: f32 = 2.0;
+
 /// What a voice is the sound of.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Body {
@@ -113,7 +118,7 @@ impl Voices {
 
     /// Sounds `strike` on its body's voice, making one with `make` (the
     /// body's modes, scaled) when it has none; when all are taken, it takes
-    /// the quietest's place if it is louder, or else joins the bed.
+    /// the quietest's place if it is clearly louder, or else joins the bed.
     pub fn strike(&mut self, strike: &Strike, listener: &Listener, make: impl FnOnce() -> ModalBank) {
         let placement = listener.place(strike.point);
         let index = match self.voices.iter().position(|v| v.body == strike.body) {
@@ -130,7 +135,7 @@ impl Voices {
                         .enumerate()
                         .map(|(i, v)| (i, v.heard()))
                         .fold((0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
-                    if heard <= level {
+                    if heard <= STEAL_MARGIN * level {
                         self.merge_into_bed(strike, placement.gains);
                         return;
                     }
@@ -142,7 +147,8 @@ impl Voices {
                     pending: Vec::new(),
                     position: strike.point,
                     gains: placement.gains,
-                    level: 0.0,
+                    // Until it rings, the strike's own peak.
+                    level: (strike.loudness * strike.impulse) as f32,
                 };
                 match slot {
                     Some(i) => {
