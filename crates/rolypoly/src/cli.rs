@@ -266,6 +266,30 @@ pub enum Command {
     /// spheres, as a Wavefront OBJ file (the shipped assets/tumbler.obj is
     /// made this way from the default scene).
     MakeTumblerObj(MakeTumblerObjArgs),
+    /// Simulate a scene and write its sound, synthesized from the impacts
+    /// and heard from the camera, to a WAV file (16-bit stereo, 48 kHz),
+    /// without drawing and without an audio device.
+    Sound(SoundArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct SoundArgs {
+    /// Length of the sound, in simulated seconds (more than 0, at most 3600).
+    #[arg(long, value_name = "S", default_value_t = 3.0, value_parser = parse_clip_seconds)]
+    pub seconds: f64,
+
+    /// Where the listener stands and looks: the camera as `render` takes it,
+    /// eye then target (`ex,ey,ez,tx,ty,tz`); the overview if not given.
+    #[arg(long, value_name = "EYE,TARGET", value_parser = parse_camera, allow_hyphen_values = true)]
+    pub camera: Option<[f32; 6]>,
+
+    /// Launch the fireball at the start, as F does.
+    #[arg(long)]
+    pub fireball: bool,
+
+    /// The WAV file to write.
+    #[arg(long, value_name = "FILE.wav")]
+    pub out: PathBuf,
 }
 
 #[derive(Debug, Args)]
@@ -299,10 +323,15 @@ pub struct RecordArgs {
     pub frame: FrameArgs,
 
     /// Where the clip goes: FILE.gif (an animated GIF), FILE.mp4 (H.264,
-    /// through the program ffmpeg) or DIR/ (numbered PNGs, the folder made
-    /// if need be).
+    /// through the program ffmpeg, with the run's sound as AAC unless the
+    /// scene's sound.enabled is false) or DIR/ (numbered PNGs, the folder
+    /// made if need be).
     #[arg(long, value_name = "FILE.gif|FILE.mp4|DIR/")]
     pub out: PathBuf,
+
+    /// Also write the run's sound alone to this WAV file.
+    #[arg(long, value_name = "FILE.wav")]
+    pub audio: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]

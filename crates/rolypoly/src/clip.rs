@@ -95,7 +95,7 @@ pub fn frame_count(seconds: f64, fps: u32) -> u32 {
 }
 
 /// Fails with a clear error, before any work, where ffmpeg cannot be run.
-fn find_ffmpeg(out: &Path) -> anyhow::Result<()> {
+pub fn find_ffmpeg(out: &Path) -> anyhow::Result<()> {
     match Command::new("ffmpeg")
         .arg("-version")
         .stdout(Stdio::null())

@@ -49,15 +49,7 @@ impl Frames {
         };
         let snapshot = Snapshot::new(config, settings, width, height, mesh)?;
         let legend = args.legend.then(|| OffscreenLegend::new(&snapshot.gpu));
-        let overview = Camera::overview(config.room.size.as_vec3());
-        let camera = match args.camera {
-            Some([ex, ey, ez, tx, ty, tz]) => Camera {
-                eye: Vec3::new(ex, ey, ez),
-                target: Vec3::new(tx, ty, tz),
-                ..overview
-            },
-            None => overview,
-        };
+        let camera = chosen_camera(args.camera, config);
         Ok(Frames {
             snapshot,
             camera,
@@ -140,4 +132,19 @@ pub fn read_obj(path: &Path) -> anyhow::Result<MeshData> {
         &text,
         &path.display().to_string(),
     )?)
+}
+
+/// The camera `--camera` gives (eye, then target), or the overview of the
+/// room of `config`: what `render` and `record` draw from, and where
+/// `sound` and `record` hear from.
+pub fn chosen_camera(camera: Option<[f32; 6]>, config: &WorldConfig) -> Camera {
+    let overview = Camera::overview(config.room.size.as_vec3());
+    match camera {
+        Some([ex, ey, ez, tx, ty, tz]) => Camera {
+            eye: Vec3::new(ex, ey, ez),
+            target: Vec3::new(tx, ty, tz),
+            ..overview
+        },
+        None => overview,
+    }
 }

@@ -20,6 +20,7 @@ pub mod legend;
 pub mod sandbox;
 pub mod scene;
 pub mod simulation;
+pub mod sound;
 pub mod trace;
 pub mod window;
 

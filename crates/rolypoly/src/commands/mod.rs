@@ -1,5 +1,5 @@
 //! The program's commands, a file each: the window (no subcommand),
-//! `simulate`, `render`, `record`, `replay` and `make-tumbler-obj`; and the
+//! `simulate`, `render`, `record`, `replay`, `sound` and `make-tumbler-obj`; and the
 //! checks every command's outputs pass before any work.
 
 use std::path::Path;
@@ -19,6 +19,7 @@ mod render;
 mod replay;
 mod run;
 mod simulate;
+mod sound;
 
 /// Runs the program for parsed arguments.
 pub fn run(cli: &Cli) -> anyhow::Result<()> {
@@ -59,8 +60,16 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Record(args)) => record::record(
             Simulation::new(world, scene.effects, seed),
             &args.frame.effects.apply(&scene.light),
-            scene.quality,
+            (scene.quality, &scene.sound),
             gpu,
+            args,
+        ),
+        Some(Command::Sound(_)) if gpu => anyhow::bail!(
+            "the GPU engine does not report the balls' impacts, so its balls make no sound: make the sound with --engine cpu"
+        ),
+        Some(Command::Sound(args)) => sound::sound(
+            Simulation::new(world, scene.effects, seed),
+            &scene.sound,
             args,
         ),
         Some(Command::Replay(args)) => replay::replay(args, &cli.window, cli.scene.engine),
@@ -104,7 +113,15 @@ fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
         Some(Command::Record(args)) => {
             // A folder of PNGs is made if need be, in a folder that is.
             clip::ClipKind::of(&args.out)?;
+            if let Some(audio) = &args.audio {
+                file_in_folder(audio)?;
+                named_for(audio, "wav", "the sound is a WAV file")?;
+            }
             file_in_folder(&args.out)
+        }
+        Some(Command::Sound(args)) => {
+            file_in_folder(&args.out)?;
+            named_for(&args.out, "wav", "the sound is a WAV file")
         }
         Some(Command::Replay(args)) => match &args.out {
             Some(out) => {

@@ -354,9 +354,26 @@ impl Sandbox {
     /// [`Playback::advance`]); `spent` is the time the frame has spent
     /// stepping. Returns how many ran.
     pub fn frame(&mut self, elapsed: f64, spent: impl FnMut() -> std::time::Duration) -> u32 {
+        self.frame_heard(elapsed, spent, |_| {})
+    }
+
+    /// [`Sandbox::frame`], handing the simulation to `heard` after each
+    /// step it takes (the window's sound hears them so).
+    pub fn frame_heard(
+        &mut self,
+        elapsed: f64,
+        spent: impl FnMut() -> std::time::Duration,
+        mut heard: impl FnMut(&Simulation),
+    ) -> u32 {
         let dt = self.sim.world.config().solver.dt;
         let mut playback = std::mem::take(&mut self.playback);
-        let steps = playback.advance(elapsed, dt, spent, || self.tick());
+        let steps = playback.advance(elapsed, dt, spent, || {
+            let before = self.ticks;
+            self.tick();
+            if self.ticks > before {
+                heard(&self.sim);
+            }
+        });
         self.playback = playback;
         steps
     }

@@ -10,6 +10,7 @@ use crate::engine::Engine;
 use glam::DVec3;
 use rolypoly_physics::Rgb;
 use rolypoly_render::QualityChoice;
+use rolypoly_sound::Material;
 
 use super::bounds::{Bounds, widen};
 use super::{MAX_BALLS, PARTICLE_CAPACITY, Scene};
@@ -28,6 +29,8 @@ const MAX_RATE: f64 = 100_000.0;
 const MAX_INTENSITY: f64 = 100.0;
 /// Largest spring, damping or force of the hand that drags.
 const MAX_GRAB: f64 = 1e6;
+/// Largest master volume of the sound (a gain: +12 dB).
+const MAX_VOLUME: f64 = 4.0;
 
 /// Where a value of type `T` lives in a [`Scene`].
 pub struct Place<T: 'static> {
@@ -46,6 +49,19 @@ pub struct WordPlace {
     pub read: fn(&Scene) -> &'static str,
     /// Sets the value named (one of `names`).
     pub write: fn(&mut Scene, &str),
+}
+
+/// `material!(balls)`: the material `scene.sound.balls`, by its name.
+macro_rules! material {
+    ($field:ident) => {
+        Word(WordPlace {
+            names: &Material::NAMES,
+            read: |scene| scene.sound.$field.name(),
+            write: |scene, name| {
+                scene.sound.$field = Material::from_name(name).unwrap_or(scene.sound.$field);
+            },
+        })
+    };
 }
 
 /// `place!(world.gravity)`: the field `scene.world.gravity`.
@@ -399,6 +415,54 @@ pub static KEYS: &[Key] = &[
         NextFrame,
         Choice("quality"),
         "How finely frames are drawn; auto starts high and steps down while the window is slow; render and record draw auto as high (--quality).",
+    ),
+    key_of(
+        "sound.enabled",
+        Switch(place!(sound.enabled)),
+        Any,
+        NextFrame,
+        Checkbox("sound"),
+        "Whether the room sounds: impacts, rolling, the fireball and the bells, live in the window (M mutes) and in record's MP4s.",
+    ),
+    key_of(
+        "sound.volume",
+        Real(place!(sound.volume)),
+        Within(Bounds::closed(0.0, MAX_VOLUME)),
+        NextFrame,
+        Slider("volume", 0.0, 2.0),
+        "The sound's master volume, a gain: 1 is as calibrated, 0 silent; a limiter keeps every sample below full scale.",
+    ),
+    key_of(
+        "sound.balls",
+        material!(balls),
+        Any,
+        NextFrame,
+        Choice("balls' material"),
+        "What the balls sound made of (plastic, rubber, wood, plaster, steel, glass, brass, ceramic): their modes' pitch and ring.",
+    ),
+    key_of(
+        "sound.floor",
+        material!(floor),
+        Any,
+        NextFrame,
+        Choice("floor's material"),
+        "What the floor's boards sound made of (the same materials as sound.balls).",
+    ),
+    key_of(
+        "sound.walls",
+        material!(walls),
+        Any,
+        NextFrame,
+        Choice("walls' material"),
+        "What the walls' and the ceiling's boards sound made of (the same materials as sound.balls).",
+    ),
+    key_of(
+        "sound.tumblers",
+        material!(tumblers),
+        Any,
+        NextFrame,
+        Choice("tumblers' material"),
+        "What the tumblers' shells sound made of (the same materials as sound.balls); their bells are brass.",
     ),
     key_of(
         "balls.count",

@@ -26,6 +26,7 @@ use crate::engine::Engine;
 use rolypoly_fx::EffectsConfig;
 use rolypoly_physics::WorldConfig;
 use rolypoly_render::{LightConfig, QualityChoice};
+use rolypoly_sound::SoundConfig;
 
 mod bounds;
 mod checks;
@@ -127,6 +128,8 @@ pub struct Scene {
     pub quality: QualityChoice,
     /// Which engine steps the balls (`solver.engine`).
     pub engine: Engine,
+    /// The sound (`[sound]`).
+    pub sound: SoundConfig,
 }
 
 /// Settings given on the command line; they win over the scene file and are

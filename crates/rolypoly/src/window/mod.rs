@@ -10,5 +10,6 @@ mod orbit_camera;
 mod panel;
 mod profiler;
 mod quality;
+mod sound;
 
 pub use app::{WindowOptions, run};

@@ -31,6 +31,7 @@ use super::orbit_camera::OrbitCamera;
 use super::panel::Panel;
 use super::profiler::{FrameProfile, Profiler};
 use super::quality::WindowQuality;
+use super::sound::LiveSound;
 use crate::sandbox::{MAX_CATCH_UP, Sandbox};
 use input::{Keys, MouseMode};
 
@@ -137,6 +138,8 @@ struct App {
     paint: image::RgbaImage,
     panel: Panel,
     quality: WindowQuality,
+    /// The room's sound, played live.
+    sound: LiveSound,
     /// The time the last frame spent simulating, which its drawing did not.
     last_simulation: Duration,
     /// The profiler (F3), and when the window opened (its plots' zero).
@@ -188,6 +191,7 @@ impl App {
             hud_state: HudState::new(options.seed, world.balls().len()),
             panel: Panel::new(options.scene_file.clone()),
             quality: WindowQuality::new(sandbox.scene().quality, options.msaa),
+            sound: LiveSound::open(&sandbox.scene().sound, &sandbox.sim),
             last_simulation: Duration::ZERO,
             profiler: Profiler::default(),
             opened: Instant::now(),
@@ -221,7 +225,12 @@ impl App {
     fn simulate(&mut self, elapsed: f64) {
         let started = Instant::now();
         let skipped_before = self.sandbox.playback.skipped();
-        let steps = self.sandbox.frame(elapsed, || started.elapsed());
+        self.sound
+            .follow(&self.camera.camera(), &self.sandbox.scene().sound);
+        let sound = &mut self.sound;
+        let steps = self
+            .sandbox
+            .frame_heard(elapsed, || started.elapsed(), |sim| sound.hear(sim));
         if !self.sandbox.playback.frozen() {
             let simulated = elapsed * self.sandbox.playback.scale();
             let skipped = self.sandbox.playback.skipped() - skipped_before;

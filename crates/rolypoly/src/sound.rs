@@ -1,0 +1,90 @@
+//! The run's sound as the program makes it (J1): heard from the camera a
+//! step at a time, and kept for a WAV file or an MP4's sound track.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+use anyhow::Context;
+use rolypoly_render::Camera;
+use rolypoly_sound::{Listener, SoundConfig, Soundtrack, write_wav};
+
+use crate::simulation::Simulation;
+
+/// Where `camera` hears from: its eye, facing its target.
+pub fn listener_of(camera: &Camera) -> Listener {
+    Listener {
+        position: camera.eye.as_dvec3(),
+        forward: (camera.target - camera.eye).as_dvec3(),
+    }
+}
+
+/// A run's sound, kept whole.
+pub struct Recording {
+    track: Soundtrack,
+    listener: Listener,
+    frames: Vec<[f32; 2]>,
+}
+
+impl Recording {
+    /// The sound of `sim` from its next step on, as `config` says, heard by
+    /// `listener`.
+    pub fn new(config: &SoundConfig, sim: &Simulation, listener: Listener) -> Recording {
+        Recording {
+            track: Soundtrack::new(config, &sim.world),
+            listener,
+            frames: Vec::new(),
+        }
+    }
+
+    /// Hears the step `sim` just took.
+    pub fn hear(&mut self, sim: &Simulation) {
+        self.track
+            .hear_step(&sim.world, sim.last_events(), &self.listener);
+        self.frames.append(&mut self.track.take_frames());
+    }
+
+    /// The samples so far, left and right.
+    pub fn frames(&self) -> &[[f32; 2]] {
+        &self.frames
+    }
+
+    /// Writes the samples to the WAV file `path`.
+    pub fn write_wav(&self, path: &Path) -> anyhow::Result<()> {
+        write_wav(path, &self.frames).with_context(|| format!("cannot write `{}`", path.display()))
+    }
+}
+
+/// Steps `sim` `steps` times, hearing each step.
+pub fn ticks_heard(sim: &mut Simulation, steps: u64, recording: &mut Recording) {
+    for _ in 0..steps {
+        sim.tick();
+        recording.hear(sim);
+    }
+}
+
+/// Writes `out`, the MP4 `video` with the WAV `sound` as its sound track
+/// (AAC), through ffmpeg; the video's frames are copied as they are.
+pub fn mux(video: &Path, sound: &Path, out: &Path) -> anyhow::Result<()> {
+    let output = Command::new("ffmpeg")
+        .args(["-loglevel", "error", "-y", "-i"])
+        .arg(video)
+        .arg("-i")
+        .arg(sound)
+        .args(["-map", "0:v", "-map", "1:a", "-c:v", "copy", "-c:a", "aac", "-b:a", "192k"])
+        .args(["-movflags", "+faststart"])
+        .arg(out)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .output()
+        .context("cannot start ffmpeg to add the sound")?;
+    if !output.status.success() {
+        let said = String::from_utf8_lossy(&output.stderr);
+        anyhow::bail!(
+            "ffmpeg failed to add the sound ({}): {}",
+            output.status,
+            said.trim().lines().last().unwrap_or("it said nothing")
+        );
+    }
+    Ok(())
+}

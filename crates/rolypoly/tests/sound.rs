@@ -1,0 +1,177 @@
+//! The room's sound as the program makes it: `rolypoly sound` and
+//! `record`'s sound track, the same samples every time, never clipping in
+//! the loudest scenes shipped.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use rolypoly::scene::{Overrides, load_scene_with};
+use rolypoly::simulation::Simulation;
+use rolypoly::sound::{Recording, ticks_heard};
+use rolypoly_physics::World;
+use rolypoly_sound::{CEILING, Listener, to_pcm};
+
+fn rolypoly(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(args)
+        .output()
+        .expect("the rolypoly binary runs")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("sound");
+    std::fs::create_dir_all(&dir).expect("scratch folder");
+    dir.join(name)
+}
+
+fn stderr(output: &Output) -> String {
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// The samples of a 16-bit stereo WAV file at 48 kHz.
+fn samples(path: &Path) -> Vec<i16> {
+    let mut reader = hound::WavReader::open(path).expect("a WAV file");
+    let spec = reader.spec();
+    assert_eq!((spec.channels, spec.sample_rate, spec.bits_per_sample), (2, 48_000, 16));
+    reader.samples::<i16>().map(|s| s.expect("a sample")).collect()
+}
+
+fn sound_of(scene: Option<&str>, seed: &str, seconds: &str, out: &Path) -> Vec<i16> {
+    let mut args = vec!["sound", "--seconds", seconds, "--seed", seed, "--fireball"];
+    if let Some(scene) = scene {
+        args.extend(["--scene", scene]);
+    }
+    args.extend(["--out", out.to_str().expect("UTF-8 path")]);
+    let output = rolypoly(&args);
+    assert!(output.status.success(), "{}", stderr(&output));
+    samples(out)
+}
+
+#[test]
+fn sound_writes_the_run_the_same_every_time() {
+    for (seed, seconds) in [("1", "1.5"), ("5", "2")] {
+        let first = sound_of(None, seed, seconds, &scratch(&format!("a{seed}.wav")));
+        let again = sound_of(None, seed, seconds, &scratch(&format!("b{seed}.wav")));
+        let expected = (seconds.parse::<f64>().unwrap() * 48_000.0).round() as usize * 2;
+        assert_eq!(first.len(), expected, "seed {seed}: two channels, 48 000 frames a second");
+        assert!(first == again, "seed {seed}: a rerun differs");
+        assert!(first.iter().any(|&s| s.unsigned_abs() > 300), "seed {seed}: the room is heard");
+    }
+}
+
+#[test]
+fn sound_refuses_what_it_cannot_do_cleanly() {
+    for (args, says) in [
+        (vec!["sound", "--out", "a.mp3"], "name the file `.wav`"),
+        (vec!["sound", "--out", "no-such-folder/a.wav"], "does not exist"),
+        (vec!["sound", "--engine", "gpu", "--out", "a.wav"], "--engine cpu"),
+        (vec!["sound", "--seconds", "0", "--out", "a.wav"], "0"),
+    ] {
+        let output = rolypoly(&args);
+        let err = stderr(&output);
+        assert!(!output.status.success(), "{args:?}");
+        assert!(err.contains(says) && !err.contains("panicked"), "{args:?}: {err}");
+    }
+}
+
+#[test]
+fn a_scene_that_turns_the_sound_off_is_silent() {
+    let scene = scratch("quiet.toml");
+    std::fs::write(&scene, "[sound]\nenabled = false\n").unwrap();
+    let quiet = sound_of(Some(scene.to_str().unwrap()), "1", "1", &scratch("quiet.wav"));
+    assert_eq!(quiet.len(), 96_000);
+    assert!(quiet.iter().all(|&s| s == 0));
+    let scene = scratch("soft.toml");
+    std::fs::write(&scene, "[sound]\nvolume = 0.25\nballs = \"steel\"\n").unwrap();
+    let soft = sound_of(Some(scene.to_str().unwrap()), "1", "1", &scratch("soft.wav"));
+    let loud = sound_of(None, "1", "1", &scratch("loud.wav"));
+    assert!(soft != loud, "the keys change the sound");
+    let bad = scratch("bad.toml");
+    std::fs::write(&bad, "[sound]\nballs = \"cheese\"\n").unwrap();
+    let output = rolypoly(&["sound", "--scene", bad.to_str().unwrap(), "--out", "x.wav"]);
+    assert!(!output.status.success());
+    assert!(stderr(&output).contains("sound.balls"), "{}", stderr(&output));
+}
+
+/// The loudest sample of `seconds` of the shipped scene `file`, on the
+/// CPU engine, heard from the overview: before the limiter and after.
+fn loudest(file: &str, seconds: f64) -> (f32, i16) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(file);
+    let overrides = Overrides {
+        engine: Some(rolypoly::engine::Engine::Cpu),
+        ..Overrides::default()
+    };
+    let scene = load_scene_with(Some(&path), &overrides).expect("a shipped scene");
+    let world = World::new(scene.world.clone(), 1).unwrap();
+    let mut sim = Simulation::new(world, scene.effects, 1);
+    let camera = rolypoly::frames::chosen_camera(None, sim.world.config());
+    let ear = rolypoly::sound::listener_of(&camera);
+    let mut recording = Recording::new(&scene.sound, &sim, ear);
+    let steps = (seconds / scene.world.solver.dt).round() as u64;
+    ticks_heard(&mut sim, steps, &mut recording);
+    let frames = recording.frames();
+    let peak = frames
+        .iter()
+        .flat_map(|f| [to_pcm(f[0]), to_pcm(f[1])])
+        .map(|s| s.saturating_abs())
+        .max()
+        .unwrap();
+    let after = frames.iter().fold(0.0f32, |m, f| m.max(f[0].abs()).max(f[1].abs()));
+    assert!(after <= CEILING + 1e-6, "{file}: {after} past the limiter's ceiling");
+    (after, peak)
+}
+
+#[test]
+fn the_billiards_break_and_the_pits_landing_never_reach_full_scale() {
+    for (file, seconds) in [("billiards-break.toml", 3.0), ("ballpit-10k.toml", 1.5)] {
+        let (after, peak) = loudest(file, seconds);
+        assert!(peak < i16::MAX, "{file}: a sample at full scale");
+        assert!(after > 0.01, "{file}: heard ({after})");
+    }
+}
+
+#[test]
+fn the_listener_faces_where_the_camera_looks() {
+    let camera = rolypoly::frames::chosen_camera(Some([1.0, 2.0, 3.0, 1.0, 2.0, 0.0]), &Default::default());
+    let Listener { position, forward } = rolypoly::sound::listener_of(&camera);
+    assert_eq!(position, glam::DVec3::new(1.0, 2.0, 3.0));
+    assert!((forward.normalize() - -glam::DVec3::Z).length() < 1e-9);
+}
+
+#[test]
+fn record_carries_the_same_sound_as_sound() {
+    let wav = scratch("recorded.wav");
+    let clip = scratch("clip.gif");
+    let output = rolypoly(&[
+        "record", "--seconds", "0.5", "--fps", "10", "--size", "32x18", "--fireball", "--seed", "3",
+        "--audio", wav.to_str().unwrap(), "--out", clip.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let alone = sound_of(None, "3", "0.5", &scratch("alone.wav"));
+    assert!(samples(&wav) == alone, "record's sound is sound's");
+
+    if Command::new("ffmpeg").arg("-version").output().is_err() {
+        eprintln!("ffmpeg is not installed: the MP4's sound is not checked");
+        return;
+    }
+    let mp4 = scratch("clip.mp4");
+    let output = rolypoly(&[
+        "record", "--seconds", "0.5", "--fps", "10", "--size", "32x18", "--out", mp4.to_str().unwrap(),
+    ]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let probe = Command::new("ffprobe")
+        .args(["-v", "error", "-show_entries", "stream=codec_type,codec_name,sample_rate,channels"])
+        .args(["-of", "csv=p=0", mp4.to_str().unwrap()])
+        .output()
+        .expect("ffprobe comes with ffmpeg");
+    let streams = String::from_utf8_lossy(&probe.stdout);
+    assert!(streams.contains("aac,audio,48000,2"), "{streams}");
+    assert!(streams.contains("h264,video"), "{streams}");
+    let folder = mp4.parent().unwrap();
+    let left: Vec<_> = std::fs::read_dir(folder)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().starts_with(".clip.mp4"))
+        .collect();
+    assert!(left.is_empty(), "working files left behind");
+}
