@@ -17,6 +17,7 @@ mod progress;
 mod render;
 mod run;
 mod scene;
+mod sound;
 mod trace;
 mod tumblers;
 mod world;
@@ -34,6 +35,7 @@ fn _rolypoly(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(render::overview_camera, m)?)?;
     m.add_function(wrap_pyfunction!(clip::record, m)?)?;
+    m.add_function(wrap_pyfunction!(sound::sound, m)?)?;
     m.add_function(wrap_pyfunction!(measures::angle_of_repose, m)?)?;
     m.add("DeviceError", m.py().get_type::<errors::DeviceError>())?;
     m.add("MAX_PENDING_EVENTS", run::MAX_PENDING_EVENTS)?;

@@ -214,7 +214,7 @@ fn debug_views(show: Option<&Bound<'_, PyAny>>) -> PyResult<DebugViews> {
 }
 
 /// `(eye, target)`: two points of three numbers, apart.
-fn read_camera(camera: &Bound<'_, PyAny>) -> PyResult<(Vec3, Vec3)> {
+pub fn read_camera(camera: &Bound<'_, PyAny>) -> PyResult<(Vec3, Vec3)> {
     let bad = || {
         value_error(
             "camera: give (eye, target), two points (x, y, z) in metres, such as \

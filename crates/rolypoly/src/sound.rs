@@ -70,7 +70,9 @@ pub fn mux(video: &Path, sound: &Path, out: &Path) -> anyhow::Result<()> {
         .arg(video)
         .arg("-i")
         .arg(sound)
-        .args(["-map", "0:v", "-map", "1:a", "-c:v", "copy", "-c:a", "aac", "-b:a", "192k"])
+        .args([
+            "-map", "0:v", "-map", "1:a", "-c:v", "copy", "-c:a", "aac", "-b:a", "192k",
+        ])
         .args(["-movflags", "+faststart"])
         .arg(out)
         .stdin(Stdio::null())

@@ -32,8 +32,14 @@ fn stderr(output: &Output) -> String {
 fn samples(path: &Path) -> Vec<i16> {
     let mut reader = hound::WavReader::open(path).expect("a WAV file");
     let spec = reader.spec();
-    assert_eq!((spec.channels, spec.sample_rate, spec.bits_per_sample), (2, 48_000, 16));
-    reader.samples::<i16>().map(|s| s.expect("a sample")).collect()
+    assert_eq!(
+        (spec.channels, spec.sample_rate, spec.bits_per_sample),
+        (2, 48_000, 16)
+    );
+    reader
+        .samples::<i16>()
+        .map(|s| s.expect("a sample"))
+        .collect()
 }
 
 fn sound_of(scene: Option<&str>, seed: &str, seconds: &str, out: &Path) -> Vec<i16> {
@@ -53,9 +59,16 @@ fn sound_writes_the_run_the_same_every_time() {
         let first = sound_of(None, seed, seconds, &scratch(&format!("a{seed}.wav")));
         let again = sound_of(None, seed, seconds, &scratch(&format!("b{seed}.wav")));
         let expected = (seconds.parse::<f64>().unwrap() * 48_000.0).round() as usize * 2;
-        assert_eq!(first.len(), expected, "seed {seed}: two channels, 48 000 frames a second");
+        assert_eq!(
+            first.len(),
+            expected,
+            "seed {seed}: two channels, 48 000 frames a second"
+        );
         assert!(first == again, "seed {seed}: a rerun differs");
-        assert!(first.iter().any(|&s| s.unsigned_abs() > 300), "seed {seed}: the room is heard");
+        assert!(
+            first.iter().any(|&s| s.unsigned_abs() > 300),
+            "seed {seed}: the room is heard"
+        );
     }
 }
 
@@ -63,14 +76,23 @@ fn sound_writes_the_run_the_same_every_time() {
 fn sound_refuses_what_it_cannot_do_cleanly() {
     for (args, says) in [
         (vec!["sound", "--out", "a.mp3"], "name the file `.wav`"),
-        (vec!["sound", "--out", "no-such-folder/a.wav"], "does not exist"),
-        (vec!["sound", "--engine", "gpu", "--out", "a.wav"], "--engine cpu"),
+        (
+            vec!["sound", "--out", "no-such-folder/a.wav"],
+            "does not exist",
+        ),
+        (
+            vec!["sound", "--engine", "gpu", "--out", "a.wav"],
+            "--engine cpu",
+        ),
         (vec!["sound", "--seconds", "0", "--out", "a.wav"], "0"),
     ] {
         let output = rolypoly(&args);
         let err = stderr(&output);
         assert!(!output.status.success(), "{args:?}");
-        assert!(err.contains(says) && !err.contains("panicked"), "{args:?}: {err}");
+        assert!(
+            err.contains(says) && !err.contains("panicked"),
+            "{args:?}: {err}"
+        );
     }
 }
 
@@ -78,25 +100,41 @@ fn sound_refuses_what_it_cannot_do_cleanly() {
 fn a_scene_that_turns_the_sound_off_is_silent() {
     let scene = scratch("quiet.toml");
     std::fs::write(&scene, "[sound]\nenabled = false\n").unwrap();
-    let quiet = sound_of(Some(scene.to_str().unwrap()), "1", "1", &scratch("quiet.wav"));
+    let quiet = sound_of(
+        Some(scene.to_str().unwrap()),
+        "1",
+        "1",
+        &scratch("quiet.wav"),
+    );
     assert_eq!(quiet.len(), 96_000);
     assert!(quiet.iter().all(|&s| s == 0));
     let scene = scratch("soft.toml");
     std::fs::write(&scene, "[sound]\nvolume = 0.25\nballs = \"steel\"\n").unwrap();
-    let soft = sound_of(Some(scene.to_str().unwrap()), "1", "1", &scratch("soft.wav"));
+    let soft = sound_of(
+        Some(scene.to_str().unwrap()),
+        "1",
+        "1",
+        &scratch("soft.wav"),
+    );
     let loud = sound_of(None, "1", "1", &scratch("loud.wav"));
     assert!(soft != loud, "the keys change the sound");
     let bad = scratch("bad.toml");
     std::fs::write(&bad, "[sound]\nballs = \"cheese\"\n").unwrap();
     let output = rolypoly(&["sound", "--scene", bad.to_str().unwrap(), "--out", "x.wav"]);
     assert!(!output.status.success());
-    assert!(stderr(&output).contains("sound.balls"), "{}", stderr(&output));
+    assert!(
+        stderr(&output).contains("sound.balls"),
+        "{}",
+        stderr(&output)
+    );
 }
 
 /// The loudest sample of `seconds` of the shipped scene `file`, on the
 /// CPU engine, heard from the overview: before the limiter and after.
 fn loudest(file: &str, seconds: f64) -> (f32, i16) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes").join(file);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes")
+        .join(file);
     let overrides = Overrides {
         engine: Some(rolypoly::engine::Engine::Cpu),
         ..Overrides::default()
@@ -116,8 +154,13 @@ fn loudest(file: &str, seconds: f64) -> (f32, i16) {
         .map(|s| s.saturating_abs())
         .max()
         .unwrap();
-    let after = frames.iter().fold(0.0f32, |m, f| m.max(f[0].abs()).max(f[1].abs()));
-    assert!(after <= CEILING + 1e-6, "{file}: {after} past the limiter's ceiling");
+    let after = frames
+        .iter()
+        .fold(0.0f32, |m, f| m.max(f[0].abs()).max(f[1].abs()));
+    assert!(
+        after <= CEILING + 1e-6,
+        "{file}: {after} past the limiter's ceiling"
+    );
     (after, peak)
 }
 
@@ -132,21 +175,42 @@ fn the_billiards_break_and_the_pits_landing_never_reach_full_scale() {
 
 #[test]
 fn the_listener_faces_where_the_camera_looks() {
-    let camera = rolypoly::frames::chosen_camera(Some([1.0, 2.0, 3.0, 1.0, 2.0, 0.0]), &Default::default());
+    let camera =
+        rolypoly::frames::chosen_camera(Some([1.0, 2.0, 3.0, 1.0, 2.0, 0.0]), &Default::default());
     let Listener { position, forward } = rolypoly::sound::listener_of(&camera);
     assert_eq!(position, glam::DVec3::new(1.0, 2.0, 3.0));
     assert!((forward.normalize() - -glam::DVec3::Z).length() < 1e-9);
+}
+
+/// Records half a second, ten tiny frames a second, with `more` flags.
+fn record(more: &[&str]) {
+    let mut args = vec![
+        "record",
+        "--seconds",
+        "0.5",
+        "--fps",
+        "10",
+        "--size",
+        "32x18",
+    ];
+    args.extend(more);
+    let output = rolypoly(&args);
+    assert!(output.status.success(), "{}", stderr(&output));
 }
 
 #[test]
 fn record_carries_the_same_sound_as_sound() {
     let wav = scratch("recorded.wav");
     let clip = scratch("clip.gif");
-    let output = rolypoly(&[
-        "record", "--seconds", "0.5", "--fps", "10", "--size", "32x18", "--fireball", "--seed", "3",
-        "--audio", wav.to_str().unwrap(), "--out", clip.to_str().unwrap(),
+    record(&[
+        "--fireball",
+        "--seed",
+        "3",
+        "--audio",
+        wav.to_str().unwrap(),
+        "--out",
+        clip.to_str().unwrap(),
     ]);
-    assert!(output.status.success(), "{}", stderr(&output));
     let alone = sound_of(None, "3", "0.5", &scratch("alone.wav"));
     assert!(samples(&wav) == alone, "record's sound is sound's");
 
@@ -155,12 +219,14 @@ fn record_carries_the_same_sound_as_sound() {
         return;
     }
     let mp4 = scratch("clip.mp4");
-    let output = rolypoly(&[
-        "record", "--seconds", "0.5", "--fps", "10", "--size", "32x18", "--out", mp4.to_str().unwrap(),
-    ]);
-    assert!(output.status.success(), "{}", stderr(&output));
+    record(&["--out", mp4.to_str().unwrap()]);
     let probe = Command::new("ffprobe")
-        .args(["-v", "error", "-show_entries", "stream=codec_type,codec_name,sample_rate,channels"])
+        .args([
+            "-v",
+            "error",
+            "-show_entries",
+            "stream=codec_type,codec_name,sample_rate,channels",
+        ])
         .args(["-of", "csv=p=0", mp4.to_str().unwrap()])
         .output()
         .expect("ffprobe comes with ffmpeg");

@@ -192,6 +192,17 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
         "{rate}"
     );
 
+    // The room sounds, on a device where there is one (CI has none: the
+    // window said so once and plays on); M mutes, and M again plays.
+    s.xdotool(&["key", "m"]);
+    let muted = s.expect("the sound muted", |v| v["event"] == "sound");
+    assert_eq!(muted["muted"], true, "{muted}");
+    s.xdotool(&["key", "m"]);
+    let playing = s.expect("the sound back", |v| {
+        v["event"] == "sound" && v["muted"] == false
+    });
+    assert!(playing["device"].is_boolean(), "{playing}");
+
     // Mouse look: move right of the centre; the view turns.
     s.xdotool(&["mousemove", "--window", &w, "240", "135"]);
     s.settle();

@@ -67,7 +67,10 @@ fn main() {
         let (mut synthesis, mut physics) = (Duration::ZERO, Duration::ZERO);
         let steps = (case.seconds / world.config().solver.dt).round() as usize;
         for _ in 0..steps {
-            if case.fireball_at.is_some_and(|t| (world.time() - t).abs() < 1e-9) {
+            if case
+                .fireball_at
+                .is_some_and(|t| (world.time() - t).abs() < 1e-9)
+            {
                 world.launch_fireball(None);
             }
             let started = Instant::now();

@@ -84,13 +84,7 @@ pub fn shell(radius: f64, material: &Properties) -> Vec<Mode> {
 
 /// A small bell's partials, as ratios to its strike note (hum, prime,
 /// tierce, quint, nominal of a church bell's tuning), and their shares.
-const BELL_PARTIALS: [(f64, f64); 5] = [
-    (0.5, 0.4),
-    (1.0, 1.0),
-    (1.2, 0.6),
-    (1.5, 0.4),
-    (2.0, 0.5),
-];
+const BELL_PARTIALS: [(f64, f64); 5] = [(0.5, 0.4), (1.0, 1.0), (1.2, 0.6), (1.5, 0.4), (2.0, 0.5)];
 
 /// A bell whose strike note is `note` (Hz).
 pub fn bell(note: f64, material: &Properties) -> Vec<Mode> {

@@ -49,7 +49,12 @@ impl Roar {
     }
 
     /// Adds the roar of the block that ends with `fireball` where it is now.
-    pub fn render(&mut self, frames: &mut [[f32; 2]], fireball: Option<&Fireball>, listener: &Listener) {
+    pub fn render(
+        &mut self,
+        frames: &mut [[f32; 2]],
+        fireball: Option<&Fireball>,
+        listener: &Listener,
+    ) {
         let start = self.amplitude;
         let end = match fireball {
             Some(f) => {

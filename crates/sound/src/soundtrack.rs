@@ -15,8 +15,8 @@ use crate::listener::Listener;
 use crate::material::Properties;
 use crate::modes::{self, Mode};
 use crate::resonator::ModalBank;
-use crate::rolling::Rolling;
 use crate::roar::Roar;
+use crate::rolling::Rolling;
 use crate::voices::{Body, Strike, Voices};
 
 /// The characteristic impedance of air, ρ c (Pa s/m): the pressure a
@@ -199,7 +199,10 @@ impl Soundtrack {
         let shell = |t: usize, sphere: usize| Body3 {
             body: Body::Shell(t),
             mass: shape.mass,
-            radius: shape.spheres.get(sphere).map_or(shape.bottom_radius, |s| s.radius),
+            radius: shape
+                .spheres
+                .get(sphere)
+                .map_or(shape.bottom_radius, |s| s.radius),
             material: self.config.tumblers.properties(),
             point: event.point,
         };
@@ -219,7 +222,11 @@ impl Soundtrack {
                 ball: i,
                 tumbler,
                 sphere,
-            } => (ball(i), Some(shell(tumbler, sphere)), config.tumblers.restitution),
+            } => (
+                ball(i),
+                Some(shell(tumbler, sphere)),
+                config.tumblers.restitution,
+            ),
             // The fireball keeps its speed: it reflects, as if e = 1.
             EventKind::FireballSurface { surface } => (fireball, Some(board(surface)), 1.0),
             EventKind::FireballBall { ball: i } => (fireball, ball(i), 1.0),
@@ -320,7 +327,11 @@ fn board_of(s: Surface, point: DVec3, _config: &SoundConfig) -> Body {
     } else {
         (point.x, point.y)
     };
-    Body::Board(s.index(), (u / side).floor() as i64, (v / side).floor() as i64)
+    Body::Board(
+        s.index(),
+        (u / side).floor() as i64,
+        (v / side).floor() as i64,
+    )
 }
 
 /// The mass (kg) and radiating size (m) of `body`.

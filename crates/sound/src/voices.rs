@@ -115,11 +115,15 @@ impl Voices {
         self.voices.len()
     }
 
-
     /// Sounds `strike` on its body's voice, making one with `make` (the
     /// body's modes, scaled) when it has none; when all are taken, it takes
     /// the quietest's place if it is clearly louder, or else joins the bed.
-    pub fn strike(&mut self, strike: &Strike, listener: &Listener, make: impl FnOnce() -> ModalBank) {
+    pub fn strike(
+        &mut self,
+        strike: &Strike,
+        listener: &Listener,
+        make: impl FnOnce() -> ModalBank,
+    ) {
         let placement = listener.place(strike.point);
         let index = match self.voices.iter().position(|v| v.body == strike.body) {
             Some(i) => i,

@@ -112,7 +112,10 @@ fn each_loud_impact_is_heard_once_at_its_moment() {
         let heard = hear(&mut world, &ear, &SoundConfig::default(), 360);
         // A body's ring builds in a sample; the slope shows the new
         // strike over the boards' slow low ringing of the one before.
-        let signal: Vec<f32> = mono(&heard.frames).windows(2).map(|w| w[1] - w[0]).collect();
+        let signal: Vec<f32> = mono(&heard.frames)
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .collect();
         let peak = signal.iter().fold(0.0f32, |m, s| m.max(s.abs()));
         let found = onsets(&signal, 0.05 * peak);
         let loud: Vec<f64> = heard
@@ -124,7 +127,10 @@ fn each_loud_impact_is_heard_once_at_its_moment() {
         assert!(loud.len() >= 6, "seed {seed}: {} loud impacts", loud.len());
         for &t in &loud {
             let near = found.iter().filter(|&&o| (o - t).abs() < 0.002).count();
-            assert_eq!(near, 1, "seed {seed}: impact at {t:.4} s heard {near} times; onsets {found:?}");
+            assert_eq!(
+                near, 1,
+                "seed {seed}: impact at {t:.4} s heard {near} times; onsets {found:?}"
+            );
         }
         for &o in &found {
             assert!(
@@ -149,24 +155,30 @@ fn spectral_peak(signal: &[f32], low: f64, high: f64) -> f64 {
     let k = (lo..hi)
         .max_by(|&a, &b| magnitude(a).total_cmp(&magnitude(b)))
         .unwrap();
-    let (a, b, c) = (magnitude(k - 1).ln(), magnitude(k).ln(), magnitude(k + 1).ln());
+    let (a, b, c) = (
+        magnitude(k - 1).ln(),
+        magnitude(k).ln(),
+        magnitude(k + 1).ln(),
+    );
     (k as f64 + 0.5 * (a - c) / (a - 2.0 * b + c)) * bin
 }
 
 /// The sound of one ball of `radius` dropped onto the floor, from its
 /// impact on.
-fn one_drop(radius: f64, mass: f64, speed: f64, ear: &Listener, config: &SoundConfig) -> Vec<[f32; 2]> {
+fn one_drop(
+    radius: f64,
+    mass: f64,
+    speed: f64,
+    ear: &Listener,
+    config: &SoundConfig,
+) -> Vec<[f32; 2]> {
     let start = DVec3::new(0.0, radius + 0.01, 0.0);
     let mut cfg = room_with(&[(start, DVec3::new(0.0, -speed, 0.0))]);
     cfg.balls.radius = radius;
     cfg.balls.mass = mass;
     let mut world = World::new(cfg, 1).unwrap();
     let heard = hear(&mut world, ear, config, 48);
-    let first = heard
-        .impacts
-        .first()
-        .expect("the ball lands")
-        .0;
+    let first = heard.impacts.first().expect("the ball lands").0;
     heard.frames[(first * RATE) as usize - 48..].to_vec()
 }
 
@@ -237,7 +249,11 @@ fn a_harder_hit_is_louder() {
 
 #[test]
 fn a_hit_on_the_left_is_heard_on_the_left() {
-    for (distance, facing) in [(2.0, -DVec3::Z), (3.5, DVec3::X), (1.5, DVec3::new(1.0, 0.0, 1.0))] {
+    for (distance, facing) in [
+        (2.0, -DVec3::Z),
+        (3.5, DVec3::X),
+        (1.5, DVec3::new(1.0, 0.0, 1.0)),
+    ] {
         let facing: DVec3 = facing.normalize();
         let ear = Listener {
             position: DVec3::new(0.5, 1.0, 0.5),
@@ -247,15 +263,15 @@ fn a_hit_on_the_left_is_heard_on_the_left() {
         let left = facing.cross(DVec3::Y).normalize() * -1.0;
         let towards = (facing + left).normalize();
         let spot = ear.position + towards * distance;
-        let mut cfg = room_with(&[(
-            DVec3::new(spot.x, 0.13, spot.z),
-            DVec3::new(0.0, -3.0, 0.0),
-        )]);
+        let mut cfg = room_with(&[(DVec3::new(spot.x, 0.13, spot.z), DVec3::new(0.0, -3.0, 0.0))]);
         cfg.balls.radius = 0.12;
         let mut world = World::new(cfg, 1).unwrap();
         let heard = hear(&mut world, &ear, &SoundConfig::default(), 60);
         let ratio_db = 10.0 * (energy(&heard.frames, 0) / energy(&heard.frames, 1)).log10();
-        assert!(ratio_db >= 6.0, "facing {facing}: left {ratio_db:.1} dB over right");
+        assert!(
+            ratio_db >= 6.0,
+            "facing {facing}: left {ratio_db:.1} dB over right"
+        );
     }
 }
 
@@ -276,7 +292,11 @@ fn once_everything_rests_the_room_falls_silent_within_a_second() {
             world.take_events(&mut events);
             sound.hear_step(&world, &events, &ear);
             frames.extend(sound.take_frames());
-            let moving = world.balls().velocities().iter().any(|v| v.length() > 0.005);
+            let moving = world
+                .balls()
+                .velocities()
+                .iter()
+                .any(|v| v.length() > 0.005);
             match (rested, moving) {
                 (None, false) => rested = Some(step),
                 (Some(_), true) => rested = None,
@@ -360,22 +380,36 @@ fn the_tumblers_bells_chime_only_while_they_rock() {
             world.take_events(&mut events);
             sound.hear_step(&world, &events, &ear);
             signal.extend(mono(&sound.take_frames()));
-            let rocking = world.tumblers().iter().any(|t| t.angular_velocity().length() > 0.05);
+            let rocking = world
+                .tumblers()
+                .iter()
+                .any(|t| t.angular_velocity().length() > 0.05);
             if rocking {
                 last_rocking_chimes = sound.chimes();
             }
         }
         let still = world.tumblers().iter().all(|t| t.tilt() < 0.05);
         assert!(still, "tilt {tilt}: the tumblers settle within 12 s");
-        assert_eq!(sound.chimes(), last_rocking_chimes, "tilt {tilt}: a chime after they stopped");
+        assert_eq!(
+            sound.chimes(),
+            last_rocking_chimes,
+            "tilt {tilt}: a chime after they stopped"
+        );
         let bell = tone(&signal, 2093.0).sqrt() / signal.len() as f64;
         if tilt == 0.0 {
             assert_eq!(sound.chimes(), 0, "upright tumblers do not chime");
         } else {
             // Each starts leaning, swings through upright and past the
             // bell's angle on the other side.
-            assert!(sound.chimes() >= 3, "tilt {tilt}: {} chimes", sound.chimes());
-            assert!(bell > 1e-6, "tilt {tilt}: the bell's note is heard ({bell:e})");
+            assert!(
+                sound.chimes() >= 3,
+                "tilt {tilt}: {} chimes",
+                sound.chimes()
+            );
+            assert!(
+                bell > 1e-6,
+                "tilt {tilt}: the bell's note is heard ({bell:e})"
+            );
         }
     }
 }
@@ -391,10 +425,12 @@ fn impacts_between_balls_strike_both() {
     let mut world = World::new(cfg, 1).unwrap();
     let ear = ear_at(DVec3::new(0.0, 1.6, 3.0));
     let heard = hear(&mut world, &ear, &SoundConfig::default(), 30);
-    assert!(heard
-        .impacts
-        .iter()
-        .any(|(_, e)| matches!(e.kind, EventKind::BallBall { .. })));
+    assert!(
+        heard
+            .impacts
+            .iter()
+            .any(|(_, e)| matches!(e.kind, EventKind::BallBall { .. }))
+    );
     assert_eq!(heard.sound.strikes(), (2, 0), "one strike a ball");
     // Rung out within the quarter second.
     assert_eq!(heard.sound.voices(), 0);

@@ -26,6 +26,7 @@ from ._rolypoly import (
     overview_camera,
     record,
     render,
+    sound,
 )
 
 __all__ = [
@@ -43,4 +44,5 @@ __all__ = [
     "overview_camera",
     "record",
     "render",
+    "sound",
 ]

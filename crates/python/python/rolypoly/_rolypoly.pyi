@@ -232,6 +232,13 @@ def record(
 ) -> int:
     """Steps the world on and writes a clip (.gif, .mp4 or DIR/) as `rolypoly record`; the frame count."""
 
+def sound(
+    world: World,
+    seconds: float,
+    camera: Optional[Tuple[Vector, Vector]] = None,
+) -> npt.NDArray[np.float32]:
+    """Steps the world on and returns its sound, (frames, 2) float32 at 48 kHz, as `rolypoly sound`."""
+
 def angle_of_repose(
     positions: npt.ArrayLike, radius: float, axis: Tuple[float, float] = (0.0, 0.0)
 ) -> Optional[float]:

@@ -86,6 +86,8 @@ pub fn record(
 /// A working file beside `out`, named after it: `clip.mp4` gives
 /// `.clip.mp4.video.mp4`.
 fn beside(out: &Path, what: &str) -> PathBuf {
-    let name = out.file_name().map_or_else(Default::default, |n| n.to_string_lossy().into_owned());
+    let name = out
+        .file_name()
+        .map_or_else(Default::default, |n| n.to_string_lossy().into_owned());
     out.with_file_name(format!(".{name}.{what}"))
 }

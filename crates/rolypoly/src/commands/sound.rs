@@ -29,7 +29,11 @@ pub fn sound(mut sim: Simulation, config: &SoundConfig, args: &SoundArgs) -> any
         rolypoly_sound::SAMPLE_RATE,
         sim.world.time(),
         20.0 * f64::from(loudest.max(1e-10)).log10(),
-        if config.enabled { "" } else { "; sound.enabled is false: silence" }
+        if config.enabled {
+            ""
+        } else {
+            "; sound.enabled is false: silence"
+        }
     );
     Ok(())
 }

@@ -101,6 +101,11 @@ mod output {
 
     impl Output {
         pub fn open() -> Result<Output, String> {
+            // What ALSA says while the device opens goes to a buffer on
+            // this thread, not to the terminal: the window says once, in
+            // its own words, when there is no device.
+            #[cfg(target_os = "linux")]
+            let _quiet = alsa::Output::local_error_handler();
             let host = cpal::default_host();
             let device = host
                 .default_output_device()

@@ -167,7 +167,10 @@ impl App {
             KeyCode::KeyR => self.toggle_recording(),
             KeyCode::KeyM => {
                 let muted = self.sound.toggle_mute();
-                self.log.say("sound", json!({ "muted": muted, "device": self.sound.playing() }));
+                self.log.say(
+                    "sound",
+                    json!({ "muted": muted, "device": self.sound.playing() }),
+                );
             }
             KeyCode::KeyG => {
                 let next = if self.mode == MouseMode::Grab {
