@@ -22,13 +22,13 @@ pub struct LiveSound {
 
 impl LiveSound {
     /// The sound of `sim` as `config` says, on the system's default output
-    /// device; without one (or built without live sound), silent, having
-    /// said why once on standard error.
+    /// device; without one (or built without live sound, or on a device
+    /// that will not play), silent, having said so once on standard error.
     pub fn open(config: &SoundConfig, sim: &Simulation) -> LiveSound {
         let output = match output::Output::open() {
             Ok(output) => Some(output),
             Err(why) => {
-                eprintln!("no audio output device: sound off ({why})");
+                eprintln!("{why}");
                 None
             }
         };
@@ -93,6 +93,9 @@ mod output {
     const QUEUE_FRAMES: usize = SAMPLE_RATE as usize / 2;
     const PRIMED_FRAMES: usize = SAMPLE_RATE as usize * 60 / 1000;
 
+    /// What the window says, once, on a machine without an audio device.
+    const NO_DEVICE: &str = "no audio output device: sound off";
+
     pub struct Output {
         // Kept: dropping the stream stops it.
         _stream: cpal::Stream,
@@ -100,6 +103,7 @@ mod output {
     }
 
     impl Output {
+        /// The default device, playing; or the line that says why not.
         pub fn open() -> Result<Output, String> {
             // What ALSA says while the device opens goes to a buffer on
             // this thread, not to the terminal: the window says once, in
@@ -107,9 +111,15 @@ mod output {
             #[cfg(target_os = "linux")]
             let _quiet = alsa::Output::local_error_handler();
             let host = cpal::default_host();
-            let device = host
-                .default_output_device()
-                .ok_or("the system has no default output")?;
+            let device = host.default_output_device().ok_or(NO_DEVICE)?;
+            // ALSA names a default device on a machine without a sound
+            // card; it is found missing only when opened.
+            let refused = |e: cpal::Error| match e.kind() {
+                cpal::ErrorKind::DeviceNotAvailable => NO_DEVICE.to_owned(),
+                _ => {
+                    format!("the audio output device does not play 48 kHz stereo: sound off ({e})")
+                }
+            };
             let config = cpal::StreamConfig {
                 channels: 2,
                 sample_rate: SAMPLE_RATE,
@@ -135,8 +145,8 @@ mod output {
                     |_| {},
                     None,
                 )
-                .map_err(|e| e.to_string())?;
-            stream.play().map_err(|e| e.to_string())?;
+                .map_err(refused)?;
+            stream.play().map_err(refused)?;
             Ok(Output {
                 _stream: stream,
                 queue,
@@ -163,7 +173,7 @@ mod output {
 
     impl Output {
         pub fn open() -> Result<Output, String> {
-            Err("built without the live-sound feature".to_owned())
+            Err("built without the live-sound feature: sound off".to_owned())
         }
 
         pub fn queue(&mut self, frames: &mut Vec<[f32; 2]>) {
