@@ -52,3 +52,50 @@ pub fn add_pulse(input: &mut Vec<f32>, start: f64, duration: f64, impulse: f64, 
         *slot += (impulse * part) as f32;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 0.25 kg plastic ball of radius 0.12 m on a wooden floor.
+    const BALL_ON_WOOD: Contact = Contact {
+        mass: 0.25,
+        radius: 0.12,
+        modulus: 2.1e9,
+    };
+
+    #[test]
+    fn a_faster_hit_is_shorter_as_the_fifth_root() {
+        let t1 = BALL_ON_WOOD.duration(1.0);
+        for v in [0.5, 2.0, 8.0, 32.0] {
+            let ratio = BALL_ON_WOOD.duration(v) / t1;
+            assert!((ratio - v.powf(-0.2)).abs() < 1e-12, "{v} m/s: {ratio}");
+        }
+        // Hertz's time for this pair at 1 m/s is about half a millisecond.
+        assert!((3e-4..8e-4).contains(&t1), "{t1}");
+    }
+
+    #[test]
+    fn a_pulse_carries_its_impulse_from_its_moment() {
+        let rate = 48_000.0;
+        for (start, duration) in [
+            (0.0, 5e-4),
+            (0.010_01, 2e-4),
+            (0.003_333, 1e-5),
+            (0.0005, 3e-3),
+        ] {
+            let mut input = Vec::new();
+            add_pulse(&mut input, start, duration, 1.25, rate);
+            let sum: f64 = input.iter().map(|&x| f64::from(x)).sum();
+            assert!((sum - 1.25).abs() < 1e-5, "{start} {duration}: {sum}");
+            let first = input.iter().position(|&x| x > 0.0).unwrap();
+            assert_eq!(
+                first,
+                (start * rate).floor() as usize,
+                "{start}: begins in its sample"
+            );
+            let last = input.iter().rposition(|&x| x > 0.0).unwrap();
+            assert!(last as f64 <= ((start + duration) * rate).ceil());
+        }
+    }
+}

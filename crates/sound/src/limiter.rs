@@ -30,11 +30,40 @@ impl Limiter {
             self.envelope = (self.envelope * self.release).max(peak);
             if self.envelope > CEILING {
                 // The envelope is at least this sample's peak, so the
-                // sample ends at or below the ceiling.
+                // sample ends at the ceiling or below it, but for the
+                // product's rounding, which the clamp takes off.
                 let gain = CEILING / self.envelope;
-                frame[0] *= gain;
-                frame[1] *= gain;
+                for x in frame.iter_mut() {
+                    *x = (*x * gain).clamp(-CEILING, CEILING);
+                }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::noise::WhiteNoise;
+
+    #[test]
+    fn no_sample_passes_the_ceiling_and_quiet_ones_pass_untouched() {
+        let mut noise = WhiteNoise::new(7);
+        let mut limiter = Limiter::new(48_000.0);
+        for loudness in [0.5f32, 2.0, 40.0, 0.1] {
+            let mut frames: Vec<[f32; 2]> = (0..4800)
+                .map(|_| [noise.next() * loudness, noise.next() * loudness])
+                .collect();
+            limiter.run(&mut frames);
+            let peak = frames
+                .iter()
+                .fold(0.0f32, |m, f| m.max(f[0].abs()).max(f[1].abs()));
+            assert!(peak <= CEILING, "{loudness}: {peak}");
+        }
+        let mut fresh = Limiter::new(48_000.0);
+        let quiet = [[0.3, -0.5], [0.8, 0.1]];
+        let mut frames = quiet;
+        fresh.run(&mut frames);
+        assert_eq!(frames, quiet);
     }
 }

@@ -60,3 +60,49 @@ impl Listener {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ear() -> Listener {
+        Listener {
+            position: DVec3::new(0.0, 1.5, 2.0),
+            forward: DVec3::new(0.0, 0.0, -3.0),
+        }
+    }
+
+    #[test]
+    fn the_pan_keeps_the_power_and_follows_the_side() {
+        let ear = ear();
+        for (x, z) in [
+            (0.0, -3.0),
+            (-2.0, 2.0),
+            (4.0, 1.0),
+            (-1.0, -1.0),
+            (0.0, 5.0),
+        ] {
+            let at = DVec3::new(x, 1.5, z);
+            let p = ear.place(at);
+            let d = (at - ear.position).length();
+            let power = (p.gains[0] as f64).powi(2) + (p.gains[1] as f64).powi(2);
+            // Equal power: the two gains' squares sum to 1/d².
+            assert!((power * d * d - 1.0).abs() < 1e-5, "({x}, {z}): {power}");
+            assert!((p.delay - d / SPEED_OF_SOUND).abs() < 1e-12);
+            let side = (at - ear.position).normalize().dot(ear.right());
+            assert_eq!(p.gains[0] > p.gains[1], side < -1e-9, "({x}, {z})");
+        }
+        // Straight ahead, and straight behind: the two ears alike.
+        let ahead = ear.place(DVec3::new(0.0, 1.5, -3.0)).gains;
+        assert!((ahead[0] - ahead[1]).abs() < 1e-6);
+    }
+
+    #[test]
+    fn loudness_falls_as_one_over_distance_beyond_the_head() {
+        let ear = ear();
+        let at = |d: f64| ear.place(ear.position + DVec3::new(0.0, 0.0, -d)).gains[0];
+        assert!((at(2.0) / at(4.0) - 2.0).abs() < 1e-5);
+        assert!((at(1.0) / at(3.0) - 3.0).abs() < 1e-5);
+        assert_eq!(at(0.1), at(0.3), "nearer than the head: as at its size");
+    }
+}

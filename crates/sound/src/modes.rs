@@ -93,3 +93,50 @@ pub fn bell(note: f64, material: &Properties) -> Vec<Mode> {
         .map(|&(ratio, weight)| Mode::of(ratio * note, weight, material))
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::Material;
+
+    #[test]
+    fn a_sphere_rings_as_its_shear_speed_over_its_radius() {
+        for material in Material::ALL {
+            let p = material.properties();
+            for r in [0.02, 0.05, 0.12, 0.4] {
+                let lowest = sphere(r, &p)[0].frequency;
+                let expected = 2.64 * p.shear_speed() / (2.0 * PI * r);
+                assert!((lowest / expected - 1.0).abs() < 1e-12);
+                let half = sphere(r / 2.0, &p)[0].frequency;
+                assert!((half / lowest - 2.0).abs() < 1e-12, "{material:?} {r}");
+            }
+        }
+    }
+
+    #[test]
+    fn every_mode_dies_at_least_as_fast_as_the_slowest_decay() {
+        for material in Material::ALL {
+            let p = material.properties();
+            let all = [
+                sphere(0.1, &p),
+                plate(1.0, 0.02, &p),
+                shell(0.3, &p),
+                bell(2000.0, &p),
+            ];
+            for mode in all.iter().flatten() {
+                assert!(mode.decay >= SLOWEST_DECAY, "{material:?}: {mode:?}");
+                let by_loss = PI * mode.frequency * p.loss;
+                assert!(mode.decay == by_loss.max(SLOWEST_DECAY));
+            }
+        }
+    }
+
+    #[test]
+    fn a_plate_rings_higher_as_it_is_smaller_and_thicker() {
+        let wood = Material::Wood.properties();
+        let base = plate(1.0, 0.02, &wood)[0].frequency;
+        // ω ∝ h / a²: half the side, four times; twice as thick, twice.
+        assert!((plate(0.5, 0.02, &wood)[0].frequency / base - 4.0).abs() < 1e-9);
+        assert!((plate(1.0, 0.04, &wood)[0].frequency / base - 2.0).abs() < 1e-9);
+    }
+}

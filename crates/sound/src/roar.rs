@@ -82,3 +82,32 @@ impl Roar {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    #[test]
+    fn the_roar_rises_as_the_fireball_comes_and_falls_as_it_goes() {
+        let ear = Listener {
+            position: DVec3::ZERO,
+            forward: -DVec3::Z,
+        };
+        let at = |velocity: DVec3| Fireball {
+            position: DVec3::new(0.0, 0.0, -5.0),
+            velocity,
+            radius: 0.2,
+            mass: 0.25,
+            speed: velocity.length(),
+        };
+        for v in [2.0, 6.0, 20.0] {
+            let coming = Roar::doppler(&at(DVec3::new(0.0, 0.0, v)), &ear);
+            let going = Roar::doppler(&at(DVec3::new(0.0, 0.0, -v)), &ear);
+            let across = Roar::doppler(&at(DVec3::new(v, 0.0, 0.0)), &ear);
+            assert!((coming - SPEED_OF_SOUND / (SPEED_OF_SOUND - v)).abs() < 1e-12);
+            assert!((going - SPEED_OF_SOUND / (SPEED_OF_SOUND + v)).abs() < 1e-12);
+            assert_eq!(across, 1.0);
+        }
+    }
+}

@@ -126,7 +126,7 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 21] = [
+const KEYS: [(&str, &str); 22] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
@@ -155,6 +155,7 @@ const KEYS: [(&str, &str); 21] = [
         "debug views: contacts, impulses, velocities, grid, rest, centre of mass",
     ),
     ("F3", "profiler: the step's stages and the frame's passes"),
+    ("M", "mute the sound / play it again"),
     ("H or F1", "this help"),
     ("F12", "screenshot (PNG)"),
     ("Esc", "release the mouse"),
