@@ -180,7 +180,7 @@ impl Soundtrack {
         let balls = world.balls();
         let ball = |i: usize| {
             let r = *balls.radii().get(i)?;
-            Some(Body3 {
+            Some(Side {
                 body: Body::Ball(i),
                 mass: balls.masses()[i],
                 radius: r,
@@ -188,15 +188,15 @@ impl Soundtrack {
                 point: balls.positions()[i],
             })
         };
-        let board = |s: Surface| Body3 {
-            body: board_of(s, event.point, &self.config),
+        let board = |s: Surface| Side {
+            body: board_of(s, event.point),
             mass: f64::INFINITY,
             radius: f64::INFINITY,
             material: surface_material(s, &self.config),
             point: event.point,
         };
         let shape = world.tumbler_shape();
-        let shell = |t: usize, sphere: usize| Body3 {
+        let shell = |t: usize, sphere: usize| Side {
             body: Body::Shell(t),
             mass: shape.mass,
             radius: shape
@@ -206,7 +206,7 @@ impl Soundtrack {
             material: self.config.tumblers.properties(),
             point: event.point,
         };
-        let fireball = world.fireball().map(|f| Body3 {
+        let fireball = world.fireball().map(|f| Side {
             body: FIREBALL,
             mass: f.mass,
             radius: f.radius,
@@ -280,7 +280,7 @@ impl Soundtrack {
 }
 
 /// One side of an impact as the sound sees it.
-struct Body3 {
+struct Side {
     body: Body,
     mass: f64,
     radius: f64,
@@ -316,7 +316,7 @@ fn board_size(s: Surface) -> (f64, f64) {
 }
 
 /// The board of surface `s` that `point` lies on.
-fn board_of(s: Surface, point: DVec3, _config: &SoundConfig) -> Body {
+fn board_of(s: Surface, point: DVec3) -> Body {
     let n = s.inward_normal().abs();
     let (side, _) = board_size(s);
     // The two axes in the surface's plane.
