@@ -1,6 +1,7 @@
 //! What each drawn object is to the GPU: its per-instance data, the
 //! buffers that carry it, and how a scene view fills them each frame.
 
+use crate::finish::{BALL_FINISH, FLOOR_FINISH, Finish, TUMBLER_FINISH, WALL_FINISH};
 use crate::gpu::Gpu;
 use crate::room;
 use crate::view::SceneView;
@@ -101,7 +102,7 @@ impl BallInstance {
 }
 
 /// The one material of every ball: glossy and sharp-highlighted.
-pub const BALL_MATERIAL: (Kind, f32, f32) = (Kind::Glossy, 0.9, 110.0);
+pub const BALL_MATERIAL: (Kind, Finish) = (Kind::Glossy, BALL_FINISH);
 
 /// Instances of one layout, filled each frame and uploaded into a buffer
 /// that grows to the largest frame seen.
@@ -168,17 +169,17 @@ pub fn fill_scene(list: &mut Vec<Instance>, view: &SceneView) -> Ranges {
             surface.normal().extend(0.0),
             surface.corner.extend(1.0),
         );
-        let (kind, specular, shininess) = if i == 0 {
-            (Kind::Wood, 0.35, 40.0)
+        let (kind, finish) = if i == 0 {
+            (Kind::Wood, FLOOR_FINISH)
         } else {
-            (Kind::Plain, 0.04, 8.0)
+            (Kind::Plain, WALL_FINISH)
         };
         list.push(Instance::new(
             model,
             view.room_colors[i],
             kind,
-            specular,
-            shininess,
+            finish.specular,
+            finish.shininess,
             0.0,
         ));
     }
@@ -190,8 +191,8 @@ pub fn fill_scene(list: &mut Vec<Instance>, view: &SceneView) -> Ranges {
             t.model(),
             t.color,
             Kind::Painted,
-            0.55,
-            60.0,
+            TUMBLER_FINISH.specular,
+            TUMBLER_FINISH.shininess,
             0.0,
         ));
     }

@@ -11,6 +11,7 @@
 
 mod camera;
 mod debug_view;
+mod finish;
 mod gpu;
 mod instances;
 mod irradiance;
@@ -31,10 +32,13 @@ pub use debug_view::{
     DebugLayer, DebugMark, DebugViews, LegendEntry, MarkShape, REST_SPEED, mark_scale, mark_size,
     speed_color,
 };
+pub use finish::{BALL_FINISH, FLOOR_FINISH, Finish, TUMBLER_FINISH, WALL_FINISH};
 pub use gpu::{Gpu, HDR_FORMAT, RenderError};
+pub use lighting::attenuated;
 pub use mesh::{MeshData, Vertex};
 pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};
 pub use paint::tumbler_paint;
+pub use room::{Surface, surfaces as room_surfaces};
 pub use quality::{AUTO_TARGET_FPS, AutoQuality, Quality, QualityChoice};
 pub use renderer::{FrameStats, PassTimes, RenderSettings, Renderer, StampSlots};
 pub use snapshot::Snapshot;

@@ -7,8 +7,11 @@ use glam::Vec3;
 /// with `u x v` pointing into the room.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Surface {
+    /// The corner both edges start from (m).
     pub corner: Vec3,
+    /// The first edge.
     pub u: Vec3,
+    /// The second edge.
     pub v: Vec3,
 }
 
@@ -18,6 +21,7 @@ impl Surface {
         self.u.cross(self.v).normalize()
     }
 
+    /// Its area (m^2).
     pub fn area(&self) -> f32 {
         self.u.cross(self.v).length()
     }

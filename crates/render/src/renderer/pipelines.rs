@@ -98,7 +98,8 @@ impl Pipelines {
         // from either side, and smooth at the outline through alpha to
         // coverage where there are samples to cover.
         let alpha_to_coverage = msaa > 1;
-        let (kind, specular, shininess) = BALL_MATERIAL;
+        let (kind, finish) = BALL_MATERIAL;
+        let (specular, shininess) = (finish.specular, finish.shininess);
         let ball_constants = [
             ("ALPHA_TO_COVERAGE", f64::from(u8::from(alpha_to_coverage))),
             ("BALL_KIND", f64::from(kind as u32)),
