@@ -32,7 +32,7 @@ pub use geometry::Ray;
 pub use hdr::write_exr;
 pub use light::{SphereLight, power_of};
 pub use material::{Albedo, Material};
-pub use render::{Radiance, render};
+pub use render::{Radiance, render, threads};
 pub use sampler::Sampler;
 pub use scene::{Mesh, Scene, SceneError};
 pub use tonemap::{aces, to_picture};

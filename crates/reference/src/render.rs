@@ -27,6 +27,11 @@ impl Radiance {
     }
 }
 
+/// The threads a picture is traced on.
+pub fn threads() -> usize {
+    rayon::current_num_threads()
+}
+
 /// The scene seen by `camera` in a `width` x `height` picture, `spp`
 /// samples a pixel, each at a point of its own within the pixel (a box
 /// filter), drawn from the streams `seed` gives. `row_done` is called as

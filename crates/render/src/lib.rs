@@ -38,9 +38,9 @@ pub use lighting::attenuated;
 pub use mesh::{MeshData, Vertex};
 pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};
 pub use paint::tumbler_paint;
-pub use room::{Surface, surfaces as room_surfaces};
 pub use quality::{AUTO_TARGET_FPS, AutoQuality, Quality, QualityChoice};
 pub use renderer::{FrameStats, PassTimes, RenderSettings, Renderer, StampSlots};
+pub use room::{Surface, surfaces as room_surfaces};
 pub use snapshot::Snapshot;
 pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
 pub use view::{

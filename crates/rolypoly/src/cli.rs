@@ -305,9 +305,60 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
 
+    #[command(flatten)]
+    pub truth: ReferenceArgs,
+
     /// The PNG file to write.
     #[arg(long, value_name = "FILE.png")]
     pub out: PathBuf,
+}
+
+/// The path-traced reference of a frame, and the real-time frame measured
+/// against it.
+#[derive(Debug, Args)]
+pub struct ReferenceArgs {
+    /// Path-trace the frame instead: the same scene at the same moment lit
+    /// as light really goes, on the CPU's threads.
+    #[arg(long, conflicts_with = "compare")]
+    pub reference: bool,
+
+    /// Write the real-time frame to --out, the path-traced reference beside
+    /// it (NAME-reference.png) and FLIP's error map of the one against the
+    /// other (NAME-flip.png), and print the mean error.
+    #[arg(long)]
+    pub compare: bool,
+
+    /// The reference's samples a pixel, 1 ..= 65536 (default: 64).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub spp: Option<u32>,
+
+    /// The seed of the reference's samples, apart from the scene's --seed
+    /// (default: 1).
+    #[arg(long, value_name = "S")]
+    pub reference_seed: Option<u64>,
+
+    /// Also write the reference's linear radiance to this OpenEXR file.
+    #[arg(long, value_name = "FILE.exr")]
+    pub hdr: Option<PathBuf>,
+
+    /// Measure the frame made here (real-time, or with --reference
+    /// path-traced) against this reference picture of the same scene,
+    /// moment and size, written before by --reference: writes FLIP's error
+    /// map beside --out (NAME-flip.png) and prints the mean error.
+    #[arg(long, value_name = "FILE.png", conflicts_with = "compare")]
+    pub against: Option<PathBuf>,
+}
+
+impl ReferenceArgs {
+    /// The reference's samples a pixel when --spp does not say.
+    pub const DEFAULT_SPP: u32 = 64;
+    /// The reference's seed when --reference-seed does not say.
+    pub const DEFAULT_SEED: u64 = 1;
+
+    /// Whether a reference is traced.
+    pub fn traced(&self) -> bool {
+        self.reference || self.compare
+    }
 }
 
 #[derive(Debug, Args)]
@@ -396,6 +447,11 @@ pub struct FrameArgs {
     /// (default: the quality level's).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(16..=4096))]
     pub shadow_size: Option<u32>,
+
+    /// Shadow filter taps along each side of its square, 1 ..= 8 (1: hard
+    /// edges) (default: the quality level's).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=8))]
+    pub shadow_taps: Option<u32>,
 
     /// Use this OBJ file as the tumbler's mesh instead of the built-in one.
     #[arg(long, value_name = "FILE")]

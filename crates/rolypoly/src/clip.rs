@@ -5,20 +5,16 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Child, ChildStdin, Command, Stdio};
-use std::time::{Duration, Instant};
 
+use crate::progress::Progress;
 use anyhow::Context;
 use image::codecs::gif::{GifEncoder, Repeat};
 use image::{Delay, Frame, RgbaImage};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// How finely the GIF encoder looks for each frame's 256 colours: 1 is
 /// the finest and slowest, 30 the coarsest. At 10 a frame of 640 x 360
 /// takes a few hundredths of a second.
 const GIF_SPEED: i32 = 10;
-
-/// The progress bar shows once a clip has taken this long.
-const QUIET_FOR: Duration = Duration::from_secs(1);
 
 /// The kinds of clip, told by the name of the output.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -71,7 +67,7 @@ pub fn write_clip(
     // run that fails half way leaves no half a file.
     let mut gif = Vec::new();
     let mut clip = Clip::open(kind.clone(), out, size, fps, &mut gif)?;
-    let mut progress = Progress::new(count);
+    let mut progress = Progress::new(count, "frames");
     for k in 0..count {
         let image = frame(k)?;
         clip.add(k, image)
@@ -226,40 +222,5 @@ impl<'a> Clip<'a> {
             Clip::Pngs { .. } => {}
         }
         Ok(())
-    }
-}
-
-/// A progress bar on the terminal for a clip that takes more than
-/// `QUIET_FOR`; nothing where standard error is not a terminal.
-struct Progress {
-    bar: ProgressBar,
-    start: Instant,
-    shown: bool,
-}
-
-impl Progress {
-    fn new(frames: u32) -> Progress {
-        let bar =
-            ProgressBar::with_draw_target(Some(u64::from(frames)), ProgressDrawTarget::hidden());
-        if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {eta} left") {
-            bar.set_style(style);
-        }
-        Progress {
-            bar,
-            start: Instant::now(),
-            shown: false,
-        }
-    }
-
-    fn advance(&mut self) {
-        if !self.shown && self.start.elapsed() >= QUIET_FOR {
-            self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            self.shown = true;
-        }
-        self.bar.inc(1);
-    }
-
-    fn finish(&self) {
-        self.bar.finish_and_clear();
     }
 }

@@ -44,6 +44,7 @@ impl Frames {
         let settings = RenderSettings {
             msaa: args.msaa.unwrap_or(drawn.msaa),
             shadow_size: args.shadow_size.unwrap_or(drawn.shadow_size),
+            shadow_taps: args.shadow_taps.unwrap_or(drawn.shadow_taps),
             shadows: !args.no_shadows,
             ..drawn
         };

@@ -17,6 +17,7 @@ pub mod egui_paint;
 pub mod engine;
 pub mod frames;
 pub mod legend;
+pub mod progress;
 pub mod sandbox;
 pub mod scene;
 pub mod simulation;
