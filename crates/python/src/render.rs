@@ -181,6 +181,7 @@ fn frame_args(quality: Option<QualityChoice>, show: DebugViews) -> FrameArgs {
         no_shadows: false,
         effects: LightEffectArgs::default(),
         shadow_size: None,
+        shadow_taps: None,
         tumbler_obj: None,
         fireball: false,
         show: Some(show),

@@ -30,7 +30,7 @@ mod trace;
 pub use compare::{Comparison, FLIP_PIXELS_PER_DEGREE, compare};
 pub use geometry::Ray;
 pub use hdr::write_exr;
-pub use light::{SphereLight, power_of};
+pub use light::SphereLight;
 pub use material::{Albedo, Material};
 pub use render::{Radiance, render, threads};
 pub use sampler::Sampler;

@@ -1,16 +1,11 @@
 //! The lights: spheres that glow evenly. Drawn towards by sampling the
 //! cone in which a point sees the sphere.
 //!
-//! The real-time frame's lights are points whose light falls off as
-//! `1 / (c0 + c1 d + c2 d^2)` (gentler than the inverse square near the
-//! bulb), and have no power as such. A reference light is given the power
-//! that the real-time light delivers to the room's six surfaces: the flux
-//! `pi * integral(E)` over them, where `E` is what the real-time frame
-//! multiplies the albedo by. Emitted evenly from a small sphere, the same
-//! power lights the room by the true inverse square.
+//! A reference light has the power of the real-time light it stands for
+//! (`rolypoly_render::power_of`): emitted evenly from a small sphere, the
+//! same power lights the room by the true inverse square.
 
 use glam::Vec3;
-use rolypoly_render::{PointLight, attenuated, room_surfaces};
 use std::f32::consts::PI;
 
 use crate::material::orthonormal;
@@ -95,54 +90,9 @@ impl SphereLight {
     }
 }
 
-/// Samples per side of a surface when summing the light on it.
-const POWER_SAMPLES: usize = 64;
-
-/// The intensity (W / sr) of an even point source with the power that the
-/// real-time `light` delivers to the six surfaces of a room of
-/// `room_size`: a quarter of the integral of its `E` over them (`4 pi I`
-/// is a point source's flux; `pi E` its irradiance in the frame's units).
-pub fn power_of(light: &PointLight, room_size: Vec3) -> Vec3 {
-    let mut total = Vec3::ZERO;
-    for surface in room_surfaces(room_size) {
-        let normal = surface.normal();
-        let area = surface.area() / (POWER_SAMPLES * POWER_SAMPLES) as f32;
-        for a in 0..POWER_SAMPLES {
-            for b in 0..POWER_SAMPLES {
-                let s = (a as f32 + 0.5) / POWER_SAMPLES as f32;
-                let t = (b as f32 + 0.5) / POWER_SAMPLES as f32;
-                let to_light = light.position - surface.at(s, t);
-                let distance = to_light.length().max(1e-3);
-                let cosine = normal.dot(to_light / distance).max(0.0);
-                total += attenuated(light, distance) * cosine * area;
-            }
-        }
-    }
-    total / 4.0
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn an_inverse_square_light_keeps_its_intensity() {
-        // A light that falls off as 1 / d^2 in the frame's units has
-        // intensity pi x its colour: its flux (pi E over the room) is a
-        // point source's 4 pi I.
-        let light = PointLight {
-            position: Vec3::new(0.3, 1.7, -0.4),
-            color: Vec3::new(1.0, 2.0, 3.0),
-            falloff: [0.0, 0.0, 1.0],
-            reach: None,
-        };
-        let i = power_of(&light, Vec3::new(8.0, 4.0, 6.0));
-        let expected = light.color * PI;
-        assert!(
-            (i - expected).length() < 0.01 * expected.length(),
-            "{i} {expected}"
-        );
-    }
 
     #[test]
     fn samples_fill_the_cone_the_sphere_fills() {

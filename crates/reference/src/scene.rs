@@ -6,13 +6,13 @@ use glam::{Affine3A, Vec2, Vec3};
 use image::RgbaImage;
 use rolypoly_render::{
     BALL_FINISH, FLOOR_FINISH, Finish, MeshData, PointLight, SceneView, TUMBLER_FINISH,
-    WALL_FINISH, room_surfaces,
+    WALL_FINISH, power_of, room_surfaces,
 };
 
 use crate::albedo::{Paint, plaster, wood};
 use crate::bvh::Bvh;
 use crate::geometry::{Aabb, Ray, hit_rectangle, hit_sphere, hit_triangle};
-use crate::light::{SphereLight, power_of};
+use crate::light::SphereLight;
 use crate::material::{Albedo, Material};
 
 /// Why a scene cannot be traced.

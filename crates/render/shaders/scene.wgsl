@@ -250,9 +250,9 @@ fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f
     if globals.fireball_pos.w > 0.5 {
         color += point_light(globals.fireball_pos.xyz, globals.fireball_color.rgb, globals.fireball_falloff, base, world, n, v, material);
     }
-    // The light the room bounces back: as much as the ambient strength says,
-    // either the same everywhere or, worked out, from each surface in its
-    // colour (scaled to the same mean; see lighting.rs).
+    // The light the room bounces back: worked out from each surface in its
+    // colour (see lighting.rs), or, with the bounce off, the ambient
+    // strength's even light.
     if globals.room.w > 0.5 {
         color += base * indirect_light(world, n);
     } else {

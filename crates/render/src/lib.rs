@@ -34,7 +34,7 @@ pub use debug_view::{
 };
 pub use finish::{BALL_FINISH, FLOOR_FINISH, Finish, TUMBLER_FINISH, WALL_FINISH};
 pub use gpu::{Gpu, HDR_FORMAT, RenderError};
-pub use lighting::attenuated;
+pub use lighting::{attenuated, power_of};
 pub use mesh::{MeshData, Vertex};
 pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};
 pub use paint::tumbler_paint;

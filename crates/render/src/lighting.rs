@@ -54,33 +54,63 @@ pub fn wall_light(view: &SceneView, lights: &[PointLight]) -> [Vec3; 6] {
     out
 }
 
-/// The light each surface sends back, scaled so that on average over the
-/// room's surfaces, by area, it is as bright as `view.light.ambient`: the
-/// ambient strength keeps its meaning (how much light reaches what the
-/// lamp does not light), and the bounce only spreads it by colour and
-/// place. The scale is set by the ceiling light alone, so that the
-/// fireball's own bounce (`fireball`) comes on top of it.
-pub fn bounce(view: &SceneView, ceiling: PointLight, fireball: Option<PointLight>) -> [Vec3; 6] {
-    let from_ceiling = wall_light(view, &[ceiling]);
-    let areas = room::surfaces(view.room_size).map(|s| s.area());
-    let mean = from_ceiling
-        .iter()
-        .zip(areas)
-        .map(|(light, area)| luminance(*light) * area)
-        .sum::<f32>()
-        / areas.iter().sum::<f32>();
-    let scale = if mean > 0.0 {
-        view.light.ambient / mean
-    } else {
-        0.0
-    };
-    let from_fireball = fireball.map_or([Vec3::ZERO; 6], |f| wall_light(view, &[f]));
-    std::array::from_fn(|i| (from_ceiling[i] + from_fireball[i]) * scale)
+/// Samples per side of a surface when summing a light's power on it.
+const POWER_SAMPLES: usize = 32;
+
+/// The intensity (W / sr, in the frame's units) of an even point source
+/// with the power that `light` delivers to the six surfaces of a room of
+/// `room_size`. The frame's lights fall off as `attenuated` says and have
+/// no power as such; what they deliver is the integral of their `E` (what
+/// the albedo is multiplied by) over the surfaces, times pi (the frame's
+/// `E` is irradiance over pi), and an even source's power is `4 pi I`. So
+/// `I` is a quarter of that integral. The path-traced reference's lights,
+/// and the bounce light here, have this intensity.
+pub fn power_of(light: &PointLight, room_size: Vec3) -> Vec3 {
+    let mut total = Vec3::ZERO;
+    for surface in room::surfaces(room_size) {
+        let normal = surface.normal();
+        let area = surface.area() / (POWER_SAMPLES * POWER_SAMPLES) as f32;
+        for a in 0..POWER_SAMPLES {
+            for b in 0..POWER_SAMPLES {
+                let s = (a as f32 + 0.5) / POWER_SAMPLES as f32;
+                let t = (b as f32 + 0.5) / POWER_SAMPLES as f32;
+                let to_light = light.position - surface.at(s, t);
+                let distance = to_light.length().max(1e-3);
+                let cosine = normal.dot(to_light / distance).max(0.0);
+                total += attenuated(light, distance) * cosine * area;
+            }
+        }
+    }
+    total / 4.0
 }
 
-/// Linear luminance (Rec. 709).
-fn luminance(c: Vec3) -> f32 {
-    c.dot(Vec3::new(0.2126, 0.7152, 0.0722))
+/// The light each surface sends back in its own colour, over every
+/// bounce: the first as `wall_light` works it out from `lights`, and on
+/// top the light that goes on bouncing between the surfaces, taken as
+/// spread evenly over them: the first bounce's mean, summed over every
+/// further bounce (divided by one less the mean albedo). It is the light
+/// the frame's own direct light sends back, energy for energy; a
+/// path-traced reference (L6) showed the bounce of old, scaled to the
+/// ambient strength, about half as bright as the truth in the shadows.
+pub fn bounce(view: &SceneView, lights: &[PointLight]) -> [Vec3; 6] {
+    let surfaces = room::surfaces(view.room_size);
+    let albedo: [Vec3; 6] = std::array::from_fn(|i| {
+        let shade = if i == 0 { FLOOR_MEAN_SHADE } else { 1.0 };
+        view.room_colors[i] * shade
+    });
+    let first = wall_light(view, lights);
+    let total_area: f32 = surfaces.iter().map(|s| s.area()).sum();
+    let mean = |values: &[Vec3; 6]| {
+        values
+            .iter()
+            .zip(&surfaces)
+            .map(|(v, s)| *v * s.area())
+            .sum::<Vec3>()
+            / total_area
+    };
+    let kept = Vec3::ONE - mean(&albedo).min(Vec3::splat(0.99));
+    let further = mean(&first) / kept;
+    std::array::from_fn(|i| first[i] + albedo[i] * further)
 }
 
 #[cfg(test)]
@@ -162,5 +192,60 @@ mod tests {
             reach: None,
         };
         assert_eq!(wall_light(&view, &[light])[2], Vec3::ZERO);
+    }
+    #[test]
+    fn an_inverse_square_light_keeps_its_intensity() {
+        // A light that falls off as 1 / d^2 in the frame's units has
+        // intensity pi x its colour: its flux (pi E over the room) is a
+        // point source's 4 pi I.
+        let light = PointLight {
+            position: Vec3::new(0.3, 1.7, -0.4),
+            color: Vec3::new(1.0, 2.0, 3.0),
+            falloff: [0.0, 0.0, 1.0],
+            reach: None,
+        };
+        let i = power_of(&light, Vec3::new(8.0, 4.0, 6.0));
+        let expected = light.color * std::f32::consts::PI;
+        assert!(
+            (i - expected).length() < 0.01 * expected.length(),
+            "{i} {expected}"
+        );
+    }
+
+    #[test]
+    fn a_room_of_one_albedo_sends_back_the_sum_of_every_bounce() {
+        // Over a closed room of albedo a, what the surfaces send back
+        // averages (4 I / A) a / (1 - a), wherever the light hangs: the
+        // light's power (see `power_of`) spread over the area A, reflected
+        // a + a^2 + ...
+        for albedo in [0.3f32, 0.7] {
+            let mut view = room();
+            view.room_colors = [Vec3::splat(albedo); 6];
+            // The floor's mean shade darkens its colour.
+            view.room_colors[0] = Vec3::splat(albedo / FLOOR_MEAN_SHADE);
+            for position in [Vec3::new(0.0, 3.75, 0.0), Vec3::new(-2.0, 1.0, 3.0)] {
+                let light = PointLight {
+                    position,
+                    color: Vec3::splat(2.0),
+                    falloff: CEILING_FALLOFF,
+                    reach: None,
+                };
+                let intensity = power_of(&light, view.room_size).x;
+                let sent = bounce(&view, &[light]);
+                let surfaces = room::surfaces(view.room_size);
+                let area: f32 = surfaces.iter().map(|s| s.area()).sum();
+                let mean = sent
+                    .iter()
+                    .zip(&surfaces)
+                    .map(|(b, s)| b.x * s.area())
+                    .sum::<f32>()
+                    / area;
+                let expected = 4.0 * intensity / area * albedo / (1.0 - albedo);
+                assert!(
+                    (mean / expected - 1.0).abs() < 0.01,
+                    "{albedo} {position}: {mean} {expected}"
+                );
+            }
+        }
     }
 }

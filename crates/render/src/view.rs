@@ -16,7 +16,9 @@ pub struct LightConfig {
     pub color: [f32; 3],
     /// Brightness multiplier of the colour.
     pub intensity: f32,
-    /// Strength of the ambient term (the only light in shadow).
+    /// Strength of the even light that reaches what is in shadow where the
+    /// bounce light (`indirect`) is off; the bounce, on, is worked out from
+    /// the lights.
     pub ambient: f32,
     /// Radius of the visible bulb (metres).
     pub bulb_radius: f32,
@@ -61,7 +63,9 @@ pub struct Light {
     pub position: Vec3,
     /// Linear RGB colour times intensity.
     pub color: Vec3,
-    /// Strength of the ambient term (the only light in shadow).
+    /// Strength of the even light that reaches what is in shadow where the
+    /// bounce light (`indirect`) is off; the bounce, on, is worked out from
+    /// the lights.
     pub ambient: f32,
     /// Radius of the visible bulb.
     pub bulb_radius: f32,

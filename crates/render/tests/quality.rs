@@ -98,10 +98,12 @@ fn difference(high: &RgbaImage, other: &RgbaImage, reach: i64) -> Difference {
 /// Each level below high draws the same picture except at edges: away
 /// from them (more than one pixel for medium, two for low, which lights at
 /// half the resolution), at most 0.5 % (medium) or 2 % (low) of the pixels
-/// differ by more than 16/255, by 1 or 4 of 255 on average; at least 85 %
+/// differ by more than 16/255, by 1 or 4 of 255 on average; at least 70 %
 /// of the pixels that differ lie near an edge; and each level does differ
-/// (it is drawn as it says). Measured on lavapipe: 0.1 % and 0.4 % away
-/// from edges, 95 % of the differing pixels at edges.
+/// (it is drawn as it says). Measured on lavapipe: 0.16 % and 0.45 % away
+/// from edges, 77 to 93 % of the differing pixels at edges (the bounce
+/// light, as bright as the truth, makes the shadows' edges fainter, so
+/// fewer pixels differ there).
 #[test]
 fn each_level_differs_from_high_only_at_edges() {
     let config = WorldConfig::default();
@@ -132,7 +134,7 @@ fn each_level_differs_from_high_only_at_edges() {
             );
             let at_edges = 1.0 - d.far_share * (1.0 - d.edge_share) / d.all_share;
             assert!(
-                at_edges >= 0.85,
+                at_edges >= 0.7,
                 "{what}: {:.0} % of the differing pixels at edges",
                 100.0 * at_edges
             );

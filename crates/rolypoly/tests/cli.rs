@@ -1057,3 +1057,244 @@ fn render_draws_the_gpu_engines_balls_from_its_own_buffer() {
     let differing = pixels_differing(&with, &without, 24);
     assert!(differing > 1500, "the balls cover {differing} pixels");
 }
+
+/// The mean FLIP error `render` printed.
+fn flip_mean(output: &Output) -> f32 {
+    let out = stdout(output);
+    out.lines()
+        .find_map(|l| l.strip_prefix("mean FLIP error against the reference: "))
+        .unwrap_or_else(|| panic!("no mean error in: {out}"))
+        .parse()
+        .expect("a number")
+}
+
+#[test]
+fn render_reference_traces_on_the_cpu_alone_and_the_same_samples_give_the_same_bytes() {
+    let path = |name: &str| scratch(name).to_str().expect("UTF-8 path").to_owned();
+    let (a, b, c, hdr) = (
+        path("ref-a.png"),
+        path("ref-b.png"),
+        path("ref-c.png"),
+        path("ref-a.exr"),
+    );
+    // No graphics adapter: the reference needs none.
+    let trace = |out: &str, seed: &str, extra: &[&str]| {
+        let mut args = vec![
+            "render",
+            "--reference",
+            "--time",
+            "1",
+            "--size",
+            "64x36",
+            "--spp",
+            "4",
+            "--reference-seed",
+            seed,
+            "--out",
+            out,
+        ];
+        args.extend_from_slice(extra);
+        let output = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+            .args(&args)
+            .env("WGPU_BACKEND", "vulkan")
+            .env("VK_ICD_FILENAMES", "/nonexistent/icd.json")
+            .env("VK_DRIVER_FILES", "/nonexistent/icd.json")
+            .output()
+            .expect("the rolypoly binary runs");
+        assert!(output.status.success(), "{}", stderr(&output));
+        assert!(
+            stdout(&output).contains("path-traced reference, 4 samples a pixel"),
+            "{}",
+            stdout(&output)
+        );
+        std::fs::read(out).expect("a PNG was written")
+    };
+    let first = trace(&a, "7", &["--hdr", &hdr]);
+    assert_eq!(first, trace(&b, "7", &[]), "the same seed, the same bytes");
+    assert_ne!(first, trace(&c, "8", &[]), "another seed, other samples");
+    let picture = image::load_from_memory(&first).expect("a PNG").to_rgba8();
+    assert_eq!(picture.dimensions(), (64, 36));
+    let exr = std::fs::read(&hdr).expect("the EXR was written");
+    assert_eq!(
+        &exr[..4],
+        &[0x76, 0x2f, 0x31, 0x01],
+        "OpenEXR's magic number"
+    );
+}
+
+#[test]
+fn render_against_itself_scores_no_error_and_compare_writes_the_three_pictures() {
+    let path = |name: &str| scratch(name).to_str().expect("UTF-8 path").to_owned();
+    let frame = path("truth-frame.png");
+    let run = |args: &[&str]| {
+        let output = rolypoly(args);
+        assert!(output.status.success(), "{}", stderr(&output));
+        output
+    };
+    run(&["render", "--time", "1", "--size", "80x45", "--out", &frame]);
+    let same = path("truth-same.png");
+    let output = run(&[
+        "render",
+        "--time",
+        "1",
+        "--size",
+        "80x45",
+        "--out",
+        &same,
+        "--against",
+        &frame,
+    ]);
+    assert_eq!(flip_mean(&output), 0.0, "a frame against itself");
+    let off = path("truth-off.png");
+    let output = run(&[
+        "render",
+        "--time",
+        "1",
+        "--size",
+        "80x45",
+        "--no-indirect",
+        "--out",
+        &off,
+        "--against",
+        &frame,
+    ]);
+    assert!(flip_mean(&output) > 0.005, "another frame differs");
+
+    let compared = scratch("truth-compare.png");
+    let output = run(&[
+        "render",
+        "--compare",
+        "--time",
+        "1",
+        "--size",
+        "80x45",
+        "--spp",
+        "2",
+        "--out",
+        compared.to_str().expect("UTF-8 path"),
+    ]);
+    let mean = flip_mean(&output);
+    assert!(mean > 0.0 && mean < 1.0, "{mean}");
+    for name in [
+        "truth-compare.png",
+        "truth-compare-reference.png",
+        "truth-compare-flip.png",
+    ] {
+        let picture = image::open(scratch(name)).expect("written").to_rgb8();
+        assert_eq!(picture.dimensions(), (80, 45), "{name}");
+    }
+}
+
+#[test]
+fn the_references_noise_is_below_the_real_time_error_it_judges() {
+    // Two references of other seeds differ by less than the real-time
+    // frame differs from one, for two scenes (the default at 64 samples,
+    // here at a quarter of 640x360 on each side).
+    for seed in ["1", "2"] {
+        let path = |name: &str| {
+            scratch(&format!("noise-{seed}-{name}"))
+                .to_str()
+                .expect("UTF-8 path")
+                .to_owned()
+        };
+        let common = ["--seed", seed, "--time", "2", "--size", "160x90"];
+        let run = |extra: &[&str]| {
+            let args: Vec<&str> = ["render"]
+                .iter()
+                .chain(&common)
+                .chain(extra)
+                .copied()
+                .collect();
+            let output = rolypoly(&args);
+            assert!(output.status.success(), "{}", stderr(&output));
+            output
+        };
+        let reference = path("a.png");
+        run(&["--reference", "--spp", "64", "--out", &reference]);
+        let noise = flip_mean(&run(&[
+            "--reference",
+            "--spp",
+            "64",
+            "--reference-seed",
+            "2",
+            "--out",
+            &path("b.png"),
+            "--against",
+            &reference,
+        ]));
+        let error = flip_mean(&run(&["--out", &path("rt.png"), "--against", &reference]));
+        assert!(
+            noise < 0.8 * error,
+            "scene seed {seed}: noise {noise}, real-time error {error}"
+        );
+    }
+}
+
+#[test]
+fn render_reference_refuses_what_it_cannot_do() {
+    let out = scratch("never-ref.png");
+    let out_str = out.to_str().expect("UTF-8 path");
+    let err = assert_clean_failure(&rolypoly(&["render", "--spp", "4", "--out", out_str]));
+    assert!(
+        err.contains("--spp, --reference-seed and --hdr go with --reference or --compare"),
+        "{err}"
+    );
+    let err = assert_clean_failure(&rolypoly(&[
+        "render",
+        "--reference",
+        "--spp",
+        "0",
+        "--out",
+        out_str,
+    ]));
+    assert!(err.contains("--spp"), "{err}");
+    let err = assert_clean_failure(&rolypoly(&[
+        "render",
+        "--reference",
+        "--engine",
+        "gpu",
+        "--out",
+        out_str,
+    ]));
+    assert!(err.contains("--engine cpu"), "{err}");
+    let err = assert_clean_failure(&rolypoly(&[
+        "render",
+        "--size",
+        "32x18",
+        "--against",
+        "/nonexistent/ref.png",
+        "--out",
+        out_str,
+    ]));
+    assert!(
+        err.contains("cannot read the reference picture `/nonexistent/ref.png`"),
+        "{err}"
+    );
+    let small = scratch("ref-small.png");
+    let small_str = small.to_str().expect("UTF-8 path");
+    let made = rolypoly(&[
+        "render",
+        "--reference",
+        "--spp",
+        "1",
+        "--size",
+        "16x9",
+        "--out",
+        small_str,
+    ]);
+    assert!(made.status.success(), "{}", stderr(&made));
+    let err = assert_clean_failure_with_output(&rolypoly(&[
+        "render",
+        "--size",
+        "32x18",
+        "--against",
+        small_str,
+        "--out",
+        out_str,
+    ]));
+    assert!(
+        err.contains("the reference picture is 16x9 and the frame 32x18"),
+        "{err}"
+    );
+    assert!(!out.exists() && !scratch("never-ref-flip.png").exists());
+}

@@ -343,9 +343,11 @@ impl Renderer {
         self.shadow_cube
             .update(&gpu.queue, &faces, view.light.position);
         let probes = if view.light.indirect {
-            let ceiling = view.light.point();
             let fireball = view.fireball_light.filter(|_| view.light.fireball_light);
-            let surface_light = lighting::bounce(view, ceiling, fireball);
+            let lights: Vec<_> = std::iter::once(view.light.point())
+                .chain(fireball)
+                .collect();
+            let surface_light = lighting::bounce(view, &lights);
             self.irradiance
                 .update(&gpu.queue, view.room_size, &surface_light)
         } else {

@@ -33,7 +33,7 @@ pub fn render(
         .truth
         .against
         .as_deref()
-        .map(read_reference)
+        .map(|path| read_reference(path, args.size))
         .transpose()?;
     if args.truth.reference {
         // The reference alone needs no graphics adapter.
@@ -77,14 +77,6 @@ fn measure(
     picture: &image::RgbaImage,
     out: &Path,
 ) -> anyhow::Result<()> {
-    if reference.dimensions() != picture.dimensions() {
-        let (w, h) = reference.dimensions();
-        anyhow::bail!(
-            "the reference picture is {w}x{h} and the frame {}x{}: measure against a reference of the frame's --size",
-            picture.width(),
-            picture.height()
-        );
-    }
     let comparison = rolypoly_reference::compare(reference, picture);
     let flip = beside(out, "flip");
     save(&comparison.map, &flip)?;
@@ -96,11 +88,21 @@ fn measure(
     Ok(())
 }
 
-/// A reference picture written before, for --against.
-fn read_reference(path: &Path) -> anyhow::Result<image::RgbaImage> {
-    Ok(image::open(path)
+/// A reference picture written before, for --against, of the frame's
+/// `size`.
+fn read_reference(path: &Path, size: (u32, u32)) -> anyhow::Result<image::RgbaImage> {
+    let picture = image::open(path)
         .with_context(|| format!("cannot read the reference picture `{}`", path.display()))?
-        .to_rgba8())
+        .to_rgba8();
+    if picture.dimensions() != size {
+        let (w, h) = picture.dimensions();
+        anyhow::bail!(
+            "the reference picture is {w}x{h} and the frame {}x{}: measure against a reference of the frame's --size",
+            size.0,
+            size.1
+        );
+    }
+    Ok(picture)
 }
 
 /// The reference's flags make sense only with a reference, and a

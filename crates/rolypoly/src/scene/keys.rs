@@ -330,7 +330,7 @@ pub static KEYS: &[Key] = &[
         Within(UNIT),
         NextFrame,
         Slider("ambient", 0.0, 1.0),
-        "Strength of the light that reaches what is in shadow (the bounced light's average).",
+        "Strength of the even light that reaches what is in shadow where light.indirect is off (the bounce, on, is worked out from the lights).",
     ),
     key_of(
         "light.bulb_radius",
