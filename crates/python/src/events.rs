@@ -4,7 +4,9 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rolypoly::trace::event_kind_name;
-use rolypoly_physics::{Event as PhysicsEvent, EventKind, Tint, World};
+use rolypoly_physics::{Event as PhysicsEvent, EventKind, Surface, Tint, World};
+
+use crate::errors::value_error;
 
 /// One impact: which bodies met, where, along which normal, how hard, in
 /// which step; and for a ball that hit a surface or a tumbler, the colour
@@ -92,8 +94,93 @@ impl Event {
     }
 }
 
+/// Every kind's name, as `event_kind_name` gives them.
+const KINDS: [&str; 6] = [
+    "ball_surface",
+    "ball_ball",
+    "ball_tumbler",
+    "fireball_surface",
+    "fireball_ball",
+    "fireball_tumbler",
+];
+
+/// The field a pickled event holds, read back from its dict.
+fn field<'py, T: for<'a> FromPyObject<'a, 'py, Error = PyErr>>(
+    dict: &Bound<'py, PyDict>,
+    name: &str,
+) -> PyResult<Option<T>> {
+    dict.get_item(name)?.map(|v| v.extract()).transpose()
+}
+
 #[pymethods]
 impl Event {
+    /// An event from the dict :meth:`to_dict` gave: how a pickled event is
+    /// made again.
+    #[staticmethod]
+    fn _from_dict(dict: &Bound<'_, PyDict>) -> PyResult<Event> {
+        let missing = |name: &str| value_error(format!("an event's dict has no `{name}`"));
+        let kind: String = field(dict, "kind")?.ok_or_else(|| missing("kind"))?;
+        let kind = KINDS
+            .into_iter()
+            .find(|k| *k == kind)
+            .ok_or_else(|| value_error(format!("`{kind}` is no kind of event")))?;
+        let surface = field::<String>(dict, "surface")?
+            .map(|name| {
+                Surface::ALL
+                    .into_iter()
+                    .map(Surface::name)
+                    .find(|s| *s == name)
+                    .ok_or_else(|| value_error(format!("`{name}` is no surface of the room")))
+            })
+            .transpose()?;
+        Ok(Event {
+            kind,
+            step: field(dict, "step")?.ok_or_else(|| missing("step"))?,
+            time: field(dict, "time")?.ok_or_else(|| missing("time"))?,
+            ball: field(dict, "ball")?,
+            a: field(dict, "a")?,
+            b: field(dict, "b")?,
+            tumbler: field(dict, "tumbler")?,
+            sphere: field(dict, "sphere")?,
+            surface,
+            point: field(dict, "point")?.ok_or_else(|| missing("point"))?,
+            normal: field(dict, "normal")?.ok_or_else(|| missing("normal"))?,
+            speed: field(dict, "speed")?.ok_or_else(|| missing("speed"))?,
+            color: field(dict, "color")?,
+        })
+    }
+
+    /// Pickled as its dict: events travel to other processes.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyDict>,))> {
+        Ok((
+            py.get_type::<Event>().getattr("_from_dict")?,
+            (self.to_dict(py)?,),
+        ))
+    }
+
+    /// Two events are equal when every field is.
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.extract::<PyRef<'_, Event>>().is_ok_and(|o| {
+            (
+                o.kind, o.step, o.time, o.ball, o.a, o.b, o.tumbler, o.sphere, o.surface,
+            ) == (
+                self.kind,
+                self.step,
+                self.time,
+                self.ball,
+                self.a,
+                self.b,
+                self.tumbler,
+                self.sphere,
+                self.surface,
+            ) && (o.point, o.normal, o.speed, o.color)
+                == (self.point, self.normal, self.speed, self.color)
+        })
+    }
+
     /// The event as a dict of its fields (those of its kind only).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);

@@ -39,5 +39,7 @@ fn _rolypoly(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(measures::angle_of_repose, m)?)?;
     m.add("DeviceError", m.py().get_type::<errors::DeviceError>())?;
     m.add("MAX_PENDING_EVENTS", run::MAX_PENDING_EVENTS)?;
+    // The workspace's version: the package's and the program's.
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

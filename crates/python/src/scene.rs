@@ -119,6 +119,23 @@ impl Scene {
         Scene::build(Some(text), name, format!("scene `{name}`"), &overrides)
     }
 
+    /// A scene from the text :meth:`to_toml` wrote and its name: how a
+    /// pickled scene is made again.
+    #[staticmethod]
+    fn _restore(text: &str, name: String) -> PyResult<Scene> {
+        let data = parse_scene(text, &name).map_err(|e| scene_error(&e))?;
+        Ok(Scene { data, name })
+    }
+
+    /// Pickled as its whole text and its name: scenes travel to other
+    /// processes and machines, every key with them.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (String, String))> {
+        Ok((
+            py.get_type::<Scene>().getattr("_restore")?,
+            (self.to_toml(), self.name.clone()),
+        ))
+    }
+
     /// The value of a scene key, such as ``"balls.count"`` or
     /// ``"room.size"`` (a tuple). Keys that hold lists of entries are read
     /// from :meth:`to_toml`.

@@ -13,6 +13,7 @@ the same world, bit for bit. See ``docs/python.md``.
 
 from ._rolypoly import (
     MAX_PENDING_EVENTS,
+    __version__,
     Balls,
     DeviceError,
     Energy,
@@ -28,6 +29,7 @@ from ._rolypoly import (
     render,
     sound,
 )
+from .sweep import sweep
 
 __all__ = [
     "MAX_PENDING_EVENTS",
@@ -45,4 +47,5 @@ __all__ = [
     "record",
     "render",
     "sound",
+    "sweep",
 ]

@@ -17,6 +17,7 @@ EventKind = Literal[
 ]
 
 MAX_PENDING_EVENTS: int
+__version__: str
 
 class DeviceError(RuntimeError):
     """The graphics adapter could not be opened, or failed while it drew or stepped."""
