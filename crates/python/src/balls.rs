@@ -6,7 +6,7 @@ use std::borrow::Cow;
 use glam::DVec3;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
-use rolypoly::trace::tint_name;
+use rolypoly_core::trace::tint_name;
 use rolypoly_physics::{Balls as PhysicsBalls, World as PhysicsWorld};
 
 use crate::arrays::{column, read_vectors, rows3, vectors};

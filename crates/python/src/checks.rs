@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 
 use glam::DVec3;
-use rolypoly::scene::keys::MAX_SPEED;
+use rolypoly_core::scene::keys::MAX_SPEED;
 use rolypoly_physics::World;
 
 /// Two surfaces this close (metres) touch rather than overlap, as for the

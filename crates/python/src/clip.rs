@@ -6,8 +6,8 @@ use std::io;
 use std::path::PathBuf;
 
 use pyo3::prelude::*;
-use rolypoly::cli::steps_for;
-use rolypoly::clip::{ClipKind, frame_count, write_clip};
+use rolypoly_core::clip::{ClipKind, frame_count, write_clip};
+use rolypoly_core::steps_for;
 use rolypoly_gpu::GpuError;
 
 use crate::errors::{DeviceError, io_error, value_error};

@@ -11,7 +11,7 @@ use pyo3::exceptions::{
     PyValueError,
 };
 use pyo3::prelude::*;
-use rolypoly::scene::SceneError;
+use rolypoly_core::scene::SceneError;
 use rolypoly_gpu::GpuError;
 
 pyo3::create_exception!(

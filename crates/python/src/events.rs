@@ -3,7 +3,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rolypoly::trace::event_kind_name;
+use rolypoly_core::trace::event_kind_name;
 use rolypoly_physics::{Event as PhysicsEvent, EventKind, Surface, Tint, World};
 
 use crate::errors::value_error;

@@ -16,7 +16,7 @@ use std::ops::Range;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
-use rolypoly::scene::{BUILTIN_ORIGIN, Location, Scene, SceneError, line_of, parse_scene};
+use rolypoly_core::scene::{BUILTIN_ORIGIN, Location, Scene, SceneError, line_of, parse_scene};
 use toml::de::{DeTable, DeValue};
 use toml::{Table, Value};
 

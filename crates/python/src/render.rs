@@ -7,9 +7,9 @@ use glam::Vec3;
 use numpy::{PyArray1, PyArray3, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyString, PyTuple};
-use rolypoly::cli::{FrameArgs, LightEffectArgs};
-use rolypoly::frames::Frames;
-use rolypoly::simulation::Simulation;
+use rolypoly_core::frames::FrameOptions as Drawing;
+use rolypoly_core::frames::Frames;
+use rolypoly_core::simulation::Simulation;
 use rolypoly_physics::WorldConfig;
 use rolypoly_render::{Camera, DebugViews, LightConfig, QualityChoice};
 
@@ -172,20 +172,12 @@ pub fn overview_camera(world: &Bound<'_, World>) -> PyResult<(Point, Point)> {
 /// A point (x, y, z) in metres, as Python sees it.
 type Point = (f64, f64, f64);
 
-/// The flags of `rolypoly render` that these frames differ by.
-fn frame_args(quality: Option<QualityChoice>, show: DebugViews) -> FrameArgs {
-    FrameArgs {
+/// The options of `rolypoly render` that these frames differ by.
+fn frame_args(quality: Option<QualityChoice>, show: DebugViews) -> Drawing {
+    Drawing {
         quality,
-        msaa: None,
-        camera: None,
-        no_shadows: false,
-        effects: LightEffectArgs::default(),
-        shadow_size: None,
-        shadow_taps: None,
-        tumbler_obj: None,
-        fireball: false,
         show: Some(show),
-        legend: false,
+        ..Drawing::default()
     }
 }
 

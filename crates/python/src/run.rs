@@ -5,8 +5,8 @@
 
 use std::borrow::Cow;
 
-use rolypoly::engine::Engine;
-use rolypoly::simulation::Simulation;
+use rolypoly_core::engine::Engine;
+use rolypoly_core::simulation::Simulation;
 use rolypoly_gpu::{Compute, GpuBalls, GpuError, GpuSnapshot};
 use rolypoly_physics::{Balls, Event, World as PhysicsWorld};
 

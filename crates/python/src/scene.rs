@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
-use rolypoly::scene::keys::{KEYS, Slot, key};
-use rolypoly::scene::{
+use rolypoly_core::scene::keys::{KEYS, Slot, key};
+use rolypoly_core::scene::{
     self, BUILTIN_ORIGIN, Overrides, Scene as SceneData, load_scene, parse_scene, scene_file_text,
 };
 use rolypoly_physics::Rgb;

@@ -3,9 +3,9 @@
 
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
-use rolypoly::cli::steps_for;
-use rolypoly::frames::chosen_camera;
-use rolypoly::sound::{Recording, listener_of};
+use rolypoly_core::frames::chosen_camera;
+use rolypoly_core::sound::{Recording, listener_of};
+use rolypoly_core::steps_for;
 use rolypoly_gpu::GpuError;
 
 use crate::errors::{gpu_error, value_error};

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use pyo3::prelude::*;
-use rolypoly::trace::{self, TraceError};
+use rolypoly_core::trace::{self, TraceError};
 use rolypoly_physics::Event;
 
 use crate::errors::{gpu_error, io_error, one_line};

@@ -8,8 +8,8 @@ use glam::DVec3;
 use pyo3::exceptions::PyRuntimeWarning;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
-use rolypoly::cli::steps_for;
-use rolypoly::engine::Engine;
+use rolypoly_core::engine::Engine;
+use rolypoly_core::steps_for;
 
 use crate::arrays::read_vector;
 use crate::balls::Balls;

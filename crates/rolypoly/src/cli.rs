@@ -6,6 +6,7 @@ use std::time::Duration;
 use clap::{Args, Parser, Subcommand};
 
 use crate::engine::Engine;
+use crate::frames::{FrameOptions, Frames};
 use crate::scene::Overrides;
 use rolypoly_render::{DebugViews, LightConfig, QualityChoice};
 
@@ -181,6 +182,39 @@ pub struct LightEffectArgs {
     /// Without the darkening where things touch (light.occlusion).
     #[arg(long)]
     pub no_occlusion: bool,
+}
+
+impl FrameArgs {
+    /// The options these flags choose.
+    pub fn options(&self) -> FrameOptions {
+        FrameOptions {
+            quality: self.quality,
+            msaa: self.msaa,
+            camera: self.camera,
+            no_shadows: self.no_shadows,
+            shadow_size: self.shadow_size,
+            shadow_taps: self.shadow_taps,
+            tumbler_obj: self.tumbler_obj.clone(),
+            show: self.show,
+        }
+    }
+
+    /// Frames of `size` of the scene `config`, drawn as these flags say at
+    /// the scene's `quality` unless they say otherwise, with the debug
+    /// views' legend where `--legend` asks for it.
+    pub fn frames(
+        &self,
+        config: &rolypoly_physics::WorldConfig,
+        quality: QualityChoice,
+        size: (u32, u32),
+    ) -> anyhow::Result<Frames> {
+        let mut frames = Frames::new(config, quality, &self.options(), size)?;
+        if self.legend {
+            let legend = crate::legend::OffscreenLegend::new(frames.gpu());
+            frames.set_overlay(Box::new(legend));
+        }
+        Ok(frames)
+    }
 }
 
 impl LightEffectArgs {
@@ -637,11 +671,7 @@ fn parse_gpu_timeout(text: &str) -> Result<Duration, String> {
     parse_positive_seconds(text, MAX_GPU_TIMEOUT_SECONDS).map(Duration::from_secs_f64)
 }
 
-/// The number of steps that covers `seconds` at time step `dt`.
-pub fn steps_for(seconds: f64, dt: f64) -> u64 {
-    // Both are range-checked, so the quotient is finite and not negative.
-    (seconds / dt).round() as u64
-}
+pub use rolypoly_core::steps_for;
 
 #[cfg(test)]
 mod tests {

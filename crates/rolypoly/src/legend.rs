@@ -120,16 +120,12 @@ impl OffscreenLegend {
             painter: EguiPainter::new(gpu, OFFSCREEN_FORMAT),
         }
     }
+}
 
+impl rolypoly_core::frames::Overlay for OffscreenLegend {
     /// Draws the legend of `views` over `target`, a frame of `size` pixels:
     /// a point a pixel up to 720 pixels high, larger in proportion above.
-    pub fn draw(
-        &mut self,
-        gpu: &Gpu,
-        target: &wgpu::TextureView,
-        size: [u32; 2],
-        views: &DebugViews,
-    ) {
+    fn draw(&mut self, gpu: &Gpu, target: &wgpu::TextureView, size: [u32; 2], views: &DebugViews) {
         let pixels_per_point = (size[1] as f32 / 720.0).max(1.0);
         let mut input = egui::RawInput {
             screen_rect: Some(egui::Rect::from_min_size(

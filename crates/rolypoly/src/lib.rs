@@ -1,5 +1,6 @@
-//! The rolypoly program: scene files, the command line and the headless
-//! commands, on top of the `rolypoly_physics` simulation.
+//! The rolypoly program: the command line, the headless commands, the
+//! window and its sandbox, on top of `rolypoly_core` (the scene and the
+//! run).
 //!
 //! The binary (`main.rs`) only parses arguments and reports errors; the
 //! pieces live here so that tests and later front ends can reuse them.
@@ -11,19 +12,15 @@
 // carry none.
 #[allow(missing_docs)]
 pub mod cli;
-pub mod clip;
 pub mod commands;
 pub mod egui_paint;
-pub mod engine;
-pub mod frames;
 pub mod legend;
-pub mod progress;
 pub mod sandbox;
-pub mod scene;
-pub mod simulation;
-pub mod sound;
-pub mod trace;
 pub mod window;
+
+// The scene and the run are the library's; the program's own paths to
+// them (`crate::scene`, ...) lead there.
+pub use rolypoly_core::{clip, engine, frames, progress, scene, simulation, sound, trace};
 
 use std::io;
 

@@ -9,7 +9,6 @@ use rolypoly_sound::SoundConfig;
 
 use crate::cli::{RecordArgs, steps_for};
 use crate::clip::{ClipKind, find_ffmpeg, frame_count, write_clip};
-use crate::frames::Frames;
 use crate::simulation::Simulation;
 use crate::sound::{Recording, listener_of, mux, ticks_heard};
 
@@ -28,7 +27,9 @@ pub fn record(
     if args.frame.fireball {
         sim.world.launch_fireball(None);
     }
-    let mut frames = Frames::new(sim.world.config(), quality, &args.frame, args.clip.size)?;
+    let mut frames = args
+        .frame
+        .frames(sim.world.config(), quality, args.clip.size)?;
     if gpu {
         frames.move_balls_to_gpu(sim)?;
     }

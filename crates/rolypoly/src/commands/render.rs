@@ -10,7 +10,7 @@ use rolypoly_physics::WorldConfig;
 use rolypoly_render::{LightConfig, QualityChoice, RenderSettings};
 
 use crate::cli::{ReferenceArgs, RenderArgs, steps_for};
-use crate::frames::{Frames, chosen_camera, read_obj};
+use crate::frames::{chosen_camera, read_obj};
 use crate::progress::Progress;
 use crate::simulation::Simulation;
 
@@ -44,7 +44,7 @@ pub fn render(
         }
         return Ok(());
     }
-    let mut frames = Frames::new(sim.world.config(), quality, &args.frame, args.size)?;
+    let mut frames = args.frame.frames(sim.world.config(), quality, args.size)?;
     if gpu {
         frames.move_balls_to_gpu(sim)?;
     }

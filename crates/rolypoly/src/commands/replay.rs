@@ -7,7 +7,6 @@ use rolypoly_render::Camera;
 
 use crate::cli::{MAX_CLIP_SECONDS, ReplayArgs, WindowArgs, steps_for};
 use crate::clip::{frame_count, write_clip};
-use crate::frames::Frames;
 use crate::sandbox::{ReplayLog, Sandbox};
 use crate::window::fly_camera::FlyCamera;
 
@@ -60,7 +59,7 @@ fn clip(
 ) -> anyhow::Result<()> {
     let config = sandbox.world().config().clone();
     let quality = sandbox.scene().quality;
-    let mut frames = Frames::new(&config, quality, &args.frame, args.clip.size)?;
+    let mut frames = args.frame.frames(&config, quality, args.clip.size)?;
     sandbox.use_device(frames.device())?;
     // The world as it was when R was pressed.
     sandbox.replay_until(log.from_tick);

@@ -19,8 +19,8 @@ mod input;
 mod playback;
 mod replay_log;
 mod rewind;
-mod shipped;
 
+pub use crate::scene::{SHIPPED_SCENES, ShippedScene};
 pub use fixed_steps::{MAX_CATCH_UP, STEP_BUDGET_PER_FRAME};
 pub use input::{CameraPose, Input, Journal, Refused, Timed};
 use input::{array, vector};
@@ -28,7 +28,6 @@ pub use playback::{Playback, TIME_SCALES};
 pub use replay_log::{REPLAY_FORMAT, ReplayLog};
 pub use rewind::REWIND_SECONDS;
 use rewind::{History, Snapshot};
-pub use shipped::{SHIPPED_SCENES, ShippedScene};
 
 /// Most balls a player may throw into one run of a scene; I (restart)
 /// takes them away and the count starts again.
@@ -83,16 +82,7 @@ pub struct Sandbox {
     engine: Engine,
 }
 
-/// A device, its queue and adapter: where the GPU engine runs.
-#[derive(Clone)]
-pub struct Device {
-    /// The device.
-    pub device: wgpu::Device,
-    /// Its queue.
-    pub queue: wgpu::Queue,
-    /// Its adapter.
-    pub adapter: wgpu::Adapter,
-}
+pub use crate::frames::Device;
 
 impl Sandbox {
     /// The toy on `scene`, its random balls drawn from `seed`.

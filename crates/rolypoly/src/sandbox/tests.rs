@@ -426,3 +426,28 @@ fn the_history_reaches_thirty_seconds_back_and_no_further() {
     // Asked to go further back, it goes as far as it reaches.
     assert_eq!(s.rewind_to(0), oldest);
 }
+
+#[test]
+fn a_change_waits_for_the_restart_exactly_when_the_keys_table_says() {
+    use crate::scene::keys::{KEYS, Takes, nearby_change};
+    let default = Scene::default();
+    for seed in [1, 7] {
+        for key in KEYS {
+            let Some(scene) = nearby_change(key, &default) else {
+                continue;
+            };
+            let mut sandbox = Sandbox::new(default.clone(), "default.toml", seed).unwrap();
+            sandbox.set_scene(scene.clone()).unwrap();
+            assert_eq!(
+                sandbox.restart_pending(),
+                key.takes == Takes::Restart,
+                "{}: the table says {:?}",
+                key.name,
+                key.takes
+            );
+            if key.takes == Takes::NextStep {
+                assert_eq!(sandbox.world().config(), &scene.world, "{}", key.name);
+            }
+        }
+    }
+}

@@ -3,7 +3,7 @@
 use toml::{Table, Value};
 
 use super::*;
-use crate::sandbox::SHIPPED_SCENES;
+use crate::scene::SHIPPED_SCENES;
 use crate::scene::parse_scene;
 
 /// Where a value sits in a scene file: table keys and list indices.

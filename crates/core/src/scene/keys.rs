@@ -928,5 +928,53 @@ pub static KEYS: &[Key] = &[
     ),
 ];
 
+/// `scene` with the value of `key` changed to the nearest other value the
+/// scene's rules accept, or `None` for a list: how the tests of the table
+/// change one key at a time.
+pub fn nearby_change(key: &Key, scene: &Scene) -> Option<Scene> {
+    let near = |x: f64| [0.9 * x, 1.1 * x, x + 0.05, x - 0.05, 0.5, 0.01];
+    let mut candidates: Vec<Scene> = Vec::new();
+    let mut with = |edit: &dyn Fn(&mut Scene)| {
+        let mut s = scene.clone();
+        edit(&mut s);
+        candidates.push(s);
+    };
+    match &key.slot {
+        Slot::Real(p) => near(*(p.read)(scene)).map(|x| with(&|s| *(p.write)(s) = x)),
+        Slot::Single(p) => {
+            near(f64::from(*(p.read)(scene))).map(|x| with(&|s| *(p.write)(s) = x as f32))
+        }
+        Slot::Count(p) => {
+            let n = *(p.read)(scene);
+            [n + 1, n.saturating_sub(1), n, n, n, n].map(|n| with(&|s| *(p.write)(s) = n))
+        }
+        Slot::Switch(p) => {
+            let b = *(p.read)(scene);
+            [!b; 6].map(|b| with(&|s| *(p.write)(s) = b))
+        }
+        Slot::Vector(p) => {
+            let v = *(p.read)(scene);
+            near(1.0).map(|k| with(&|s| *(p.write)(s) = v * k))
+        }
+        Slot::Color(p) => {
+            let c = *(p.read)(scene);
+            near(1.0).map(|k| with(&|s| *(p.write)(s) = c.map(|x| (x * k as f32).min(1.0))))
+        }
+        Slot::Word(p) => {
+            let now = (p.read)(scene);
+            let other = p
+                .names
+                .iter()
+                .find(|n| **n != now)
+                .expect("two names or more");
+            [other; 6].map(|name| with(&|s| (p.write)(s, name)))
+        }
+        Slot::List(_) => return None,
+    };
+    candidates
+        .into_iter()
+        .find(|s| s != scene && super::validate(s).is_ok())
+}
+
 #[cfg(test)]
 mod tests;

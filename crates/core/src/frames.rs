@@ -1,8 +1,8 @@
-//! Frames drawn off-screen for `render`, `record` and `replay`: the
-//! renderer for a scene, the camera the flags choose, a tumbler mesh read
-//! from an OBJ file.
+//! Frames drawn off-screen for `render`, `record`, `replay` and Python:
+//! the renderer for a scene, the camera the options choose, a tumbler mesh
+//! read from an OBJ file.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use glam::Vec3;
@@ -11,11 +11,51 @@ use rolypoly_render::{
     Camera, DebugViews, LightConfig, MeshData, Quality, QualityChoice, RenderSettings, Snapshot,
 };
 
-use crate::cli::FrameArgs;
-use crate::legend::OffscreenLegend;
+use rolypoly_render::Gpu;
+
 use crate::simulation::Simulation;
 
-/// What draws the frames of `render`, `record` and `replay`: the off-screen renderer
+/// How frames are drawn: what `rolypoly render`'s flags and Python's
+/// arguments choose. None takes the scene's or the quality level's.
+#[derive(Clone, Debug, Default)]
+pub struct FrameOptions {
+    /// How finely: high, medium, low or auto (drawn as high off-screen).
+    pub quality: Option<QualityChoice>,
+    /// Multisample anti-aliasing: 4 or 1.
+    pub msaa: Option<u32>,
+    /// The camera's eye and the point it looks at; None: the overview.
+    pub camera: Option<[f32; 6]>,
+    /// Drawn without the point light's shadows.
+    pub no_shadows: bool,
+    /// Each shadow face's size in texels.
+    pub shadow_size: Option<u32>,
+    /// The shadow filter's taps along each side.
+    pub shadow_taps: Option<u32>,
+    /// An OBJ file to draw the tumblers with.
+    pub tumbler_obj: Option<PathBuf>,
+    /// The debug views drawn over every frame.
+    pub show: Option<DebugViews>,
+}
+
+/// Something drawn over every frame before it is read back: the program
+/// draws the debug views' legend so.
+pub trait Overlay: Send {
+    /// Draws over the frame `target` of `size` that shows `views`.
+    fn draw(&mut self, gpu: &Gpu, target: &wgpu::TextureView, size: [u32; 2], views: &DebugViews);
+}
+
+/// A device, its queue and adapter: where the GPU engine runs.
+#[derive(Clone)]
+pub struct Device {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// Its adapter.
+    pub adapter: wgpu::Adapter,
+}
+
+/// What draws the frames of `render`, `record`, `replay` and Python: the off-screen renderer
 /// for the scene, and the camera.
 pub struct Frames {
     snapshot: Snapshot,
@@ -24,8 +64,8 @@ pub struct Frames {
     level: Quality,
     /// The debug views drawn over every frame.
     debug: DebugViews,
-    /// Their legend, drawn into every frame where asked.
-    legend: Option<OffscreenLegend>,
+    /// What is drawn over every frame (the program's legend), if anything.
+    overlay: Option<Box<dyn Overlay>>,
 }
 
 impl Frames {
@@ -35,7 +75,7 @@ impl Frames {
     pub fn new(
         config: &WorldConfig,
         quality: QualityChoice,
-        args: &FrameArgs,
+        args: &FrameOptions,
         (width, height): (u32, u32),
     ) -> anyhow::Result<Frames> {
         let mesh = args.tumbler_obj.as_deref().map(read_obj).transpose()?;
@@ -49,7 +89,6 @@ impl Frames {
             ..drawn
         };
         let snapshot = Snapshot::new(config, settings, width, height, mesh)?;
-        let legend = args.legend.then(|| OffscreenLegend::new(&snapshot.gpu));
         let camera = chosen_camera(args.camera, config);
         Ok(Frames {
             snapshot,
@@ -57,8 +96,18 @@ impl Frames {
             shadows: settings.shadows,
             level,
             debug: args.show.unwrap_or_default(),
-            legend,
+            overlay: None,
         })
+    }
+
+    /// The GPU the frames are drawn on.
+    pub fn gpu(&self) -> &Gpu {
+        &self.snapshot.gpu
+    }
+
+    /// Draws `overlay` over every frame from now on.
+    pub fn set_overlay(&mut self, overlay: Box<dyn Overlay>) {
+        self.overlay = Some(overlay);
     }
 
     /// The frame of `sim` now, lit by `light`.
@@ -88,17 +137,17 @@ impl Frames {
         let snap = &mut self.snapshot;
         snap.target
             .render(&snap.gpu, &mut snap.renderer, &view, camera)?;
-        if let Some(legend) = &mut self.legend {
+        if let Some(overlay) = &mut self.overlay {
             let size = [snap.target.width, snap.target.height];
-            legend.draw(&snap.gpu, snap.target.view(), size, &self.debug);
+            overlay.draw(&snap.gpu, snap.target.view(), size, &self.debug);
         }
         Ok(snap.target.read(&snap.gpu, &what)?)
     }
 
     /// The device the frames are drawn with.
-    pub fn device(&self) -> crate::sandbox::Device {
+    pub fn device(&self) -> Device {
         let gpu = &self.snapshot.gpu;
-        crate::sandbox::Device {
+        Device {
             device: gpu.device.clone(),
             queue: gpu.queue.clone(),
             adapter: gpu.adapter.clone(),

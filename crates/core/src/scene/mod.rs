@@ -35,10 +35,12 @@ mod lists;
 mod read;
 pub mod reference;
 mod save;
+mod shipped;
 
 use checks::{Checker, Sources};
 use read::Reader;
 pub use save::scene_file_text;
+pub use shipped::{SHIPPED_SCENES, ShippedScene};
 
 /// Where the configuration comes from when no scene file is given.
 pub const BUILTIN_ORIGIN: &str = "built-in default scene";
