@@ -1,7 +1,7 @@
 //! The rolypoly toy room as a library, below the program and the Python
 //! package: scene files (their keys, defaults and checks), the run that
 //! steps the world and its effects on either engine ([`simulation`]),
-//! traces of it, and what both front ends draw and hear of a run (the
+//! its state as bytes ([`snapshot`]), traces of it, and what both front ends draw and hear of a run (the
 //! frames of a moment, clips, the sound). No command line, no window, no
 //! audio device.
 
@@ -13,6 +13,7 @@ pub mod frames;
 pub mod progress;
 pub mod scene;
 pub mod simulation;
+pub mod snapshot;
 pub mod sound;
 pub mod trace;
 

@@ -159,6 +159,11 @@ impl Simulation {
         &self.events
     }
 
+    /// Puts back the last tick's events, as a state taken on had them.
+    pub(crate) fn set_last_events(&mut self, events: Vec<Event>) {
+        self.events = events;
+    }
+
     /// The steps' stage times since the last call, summed (the counts of
     /// pairs and contacts: the last step's), and how many steps.
     pub fn take_step_times(&mut self) -> (StepTimes, u32) {

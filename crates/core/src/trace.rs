@@ -328,15 +328,25 @@ struct EventLine {
 
 /// The snake_case name of an event kind, as written in traces and summaries.
 pub fn event_kind_name(kind: &EventKind) -> &'static str {
-    match kind {
-        EventKind::BallSurface { .. } => "ball_surface",
-        EventKind::BallBall { .. } => "ball_ball",
-        EventKind::BallTumbler { .. } => "ball_tumbler",
-        EventKind::FireballSurface { .. } => "fireball_surface",
-        EventKind::FireballBall { .. } => "fireball_ball",
-        EventKind::FireballTumbler { .. } => "fireball_tumbler",
-    }
+    EVENT_KINDS[match kind {
+        EventKind::BallSurface { .. } => 0,
+        EventKind::BallBall { .. } => 1,
+        EventKind::BallTumbler { .. } => 2,
+        EventKind::FireballSurface { .. } => 3,
+        EventKind::FireballBall { .. } => 4,
+        EventKind::FireballTumbler { .. } => 5,
+    }]
 }
+
+/// Every kind of event by the name traces (and Python) give it.
+pub const EVENT_KINDS: [&str; 6] = [
+    "ball_surface",
+    "ball_ball",
+    "ball_tumbler",
+    "fireball_surface",
+    "fireball_ball",
+    "fireball_tumbler",
+];
 
 fn event_line(event: &Event) -> EventLine {
     let mut line = EventLine {

@@ -1,7 +1,9 @@
 //! Every constant of the particle effects (a scene file's `[effects]`).
 
+use serde::{Deserialize, Serialize};
+
 /// The fireball's trail (X2): cubes dropped at random intervals along its path.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TrailConfig {
     /// A new cube comes after a random wait in this range (seconds).
     pub interval_min: f64,
@@ -14,7 +16,7 @@ pub struct TrailConfig {
 }
 
 /// The fireball hitting a wall (X3): a ring of cubes spreading in the wall.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct WallHitConfig {
     /// How long the event keeps spawning (seconds).
     pub duration: f64,
@@ -29,7 +31,7 @@ pub struct WallHitConfig {
 }
 
 /// The fireball hitting a ball (X4): cubes collapse onto the ball, then a burst.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BallHitConfig {
     /// How long the event keeps spawning (seconds).
     pub duration: f64,
@@ -49,7 +51,7 @@ pub struct BallHitConfig {
 }
 
 /// Every constant of the particle effects.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EffectsConfig {
     /// Particles alive at once, at most (X5); spawning beyond fails and is counted.
     pub capacity: usize,

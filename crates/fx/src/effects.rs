@@ -10,10 +10,11 @@ use crate::particle::{Particle, ParticleKind};
 use crate::ring::ParticleRing;
 use glam::Vec3;
 use rolypoly_physics::{Event, EventKind, Fireball, Rng, World};
+use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 
 /// A fireball hit on a wall (or a tumbler): a ring spreading in its plane.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct WallHit {
     /// Where it hit (m).
     pub centre: Vec3,
@@ -26,7 +27,7 @@ pub struct WallHit {
 
 /// A fireball hit on a ball: the ball and the space around it collapse into
 /// its centre, then burst.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BallHit {
     /// The struck ball's centre (m).
     pub centre: Vec3,
@@ -68,7 +69,7 @@ pub struct EffectsStats {
 }
 
 /// The particle effects of the fireball: its trail and its hits, driven by the world's events.
-#[derive(Clone)]
+#[derive(Clone, Serialize, Deserialize)]
 pub struct Effects {
     config: EffectsConfig,
     ring: ParticleRing,

@@ -3,9 +3,10 @@
 //! constants `k_scale` and `k_alpha`, as in the report's section 3.4.3.
 
 use glam::Vec3;
+use serde::{Deserialize, Serialize};
 
 /// What a particle is for, which picks its curves.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum ParticleKind {
     /// Dropped along the fireball's path: shrinks and fades.
     Trail,
@@ -55,7 +56,7 @@ impl ParticleKind {
 }
 
 /// One particle: a small glowing cube.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Particle {
     /// What it is for.
     pub kind: ParticleKind,

@@ -3,13 +3,14 @@
 //! counted; nothing is allocated per particle.
 
 use crate::particle::Particle;
+use serde::{Deserialize, Serialize};
 
 /// The ring is full: the particle was not spawned.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Full;
 
 /// Particles in a ring of fixed capacity, spawned at the tail, retired at the head.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct ParticleRing {
     slots: Vec<Particle>,
     head: usize,

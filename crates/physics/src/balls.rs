@@ -3,6 +3,7 @@
 
 use crate::room::Surface;
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 /// From this many live balls on, work over every ball runs on all threads.
 pub(crate) const PARALLEL_BALLS: usize = 2048;
@@ -13,7 +14,7 @@ pub(crate) const PARALLEL_BALLS: usize = 2048;
 pub(crate) const PARALLEL_LIGHT_PASSES: usize = 32768;
 
 /// What colour a ball has taken on (P5): white until it hits something.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Tint {
     /// The scene's ball colour.
     White,
@@ -28,7 +29,7 @@ pub enum Tint {
 /// Uniform solid spheres. Velocities are instantaneous velocities at the
 /// current time; `spin` is the angular velocity, which friction with the
 /// surfaces couples to the sliding velocity so that balls roll.
-#[derive(Debug, Default, PartialEq)]
+#[derive(Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Balls {
     pub(crate) position: Vec<DVec3>,
     pub(crate) velocity: Vec<DVec3>,
@@ -126,6 +127,23 @@ impl Balls {
     /// How many balls there are, caught ones included.
     pub fn len(&self) -> usize {
         self.position.len()
+    }
+
+    /// Whether every column holds a value for each ball (balls read from
+    /// bytes may not).
+    pub fn columns_agree(&self) -> bool {
+        let n = self.len();
+        [
+            self.velocity.len(),
+            self.spin.len(),
+            self.radius.len(),
+            self.mass.len(),
+            self.inv_mass.len(),
+            self.tint.len(),
+            self.alive.len(),
+        ]
+        .iter()
+        .all(|&len| len == n)
     }
 
     /// Whether there are no balls.

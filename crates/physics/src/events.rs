@@ -3,9 +3,10 @@
 
 use crate::room::Surface;
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 /// Which bodies met.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum EventKind {
     /// A ball hit one of the room's surfaces.
     BallSurface {
@@ -50,7 +51,7 @@ pub enum EventKind {
 }
 
 /// One impact: where, along which normal, and how hard.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Event {
     /// Which bodies met.
     pub kind: EventKind,

@@ -2,9 +2,10 @@
 //! speed, ignores gravity, and bounces off everything it meets.
 
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 /// The fireball: a sphere flying at constant speed through the room.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Fireball {
     /// Its centre (m).
     pub position: DVec3,

@@ -41,6 +41,6 @@ pub use rng::Rng;
 pub use room::{Room, Surface};
 pub use tumbler::{Grip, Tumbler, TumblerShape, axis_extent};
 pub use world::{
-    BallPick, BuildError, ContactKind, ContactProbe, Energy, Pick, Stage, StepTimes, World,
-    placement_problem,
+    BallPick, BuildError, ContactKind, ContactProbe, Energy, Pick, Stage, StateError, StepTimes,
+    World, WorldState, placement_problem,
 };

@@ -4,9 +4,10 @@
 //! same scene on every platform and every dependency version (P10).
 
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 /// A small seeded random generator (SplitMix64), the same on every machine.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Rng {
     state: u64,
 }

@@ -1,10 +1,11 @@
 //! The closed room: six axis-aligned planes facing inwards.
 
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 /// One of the room's six surfaces. Each has its own colour (S1), which a ball
 /// takes on when it hits it (P5).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub enum Surface {
     /// The floor, at the room's lowest y.
     Floor,

@@ -3,7 +3,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use rolypoly_core::trace::event_kind_name;
+use rolypoly_core::trace::{EVENT_KINDS, event_kind_name};
 use rolypoly_physics::{Event as PhysicsEvent, EventKind, Surface, Tint, World};
 
 use crate::errors::value_error;
@@ -94,16 +94,6 @@ impl Event {
     }
 }
 
-/// Every kind's name, as `event_kind_name` gives them.
-const KINDS: [&str; 6] = [
-    "ball_surface",
-    "ball_ball",
-    "ball_tumbler",
-    "fireball_surface",
-    "fireball_ball",
-    "fireball_tumbler",
-];
-
 /// The field a pickled event holds, read back from its dict.
 fn field<'py, T: for<'a> FromPyObject<'a, 'py, Error = PyErr>>(
     dict: &Bound<'py, PyDict>,
@@ -120,7 +110,7 @@ impl Event {
     fn _from_dict(dict: &Bound<'_, PyDict>) -> PyResult<Event> {
         let missing = |name: &str| value_error(format!("an event's dict has no `{name}`"));
         let kind: String = field(dict, "kind")?.ok_or_else(|| missing("kind"))?;
-        let kind = KINDS
+        let kind = EVENT_KINDS
             .into_iter()
             .find(|k| *k == kind)
             .ok_or_else(|| value_error(format!("`{kind}` is no kind of event")))?;

@@ -7,8 +7,10 @@ use std::borrow::Cow;
 
 use rolypoly_core::engine::Engine;
 use rolypoly_core::simulation::Simulation;
+use rolypoly_core::snapshot::{self, SimulationState};
 use rolypoly_gpu::{Compute, GpuBalls, GpuError, GpuSnapshot};
 use rolypoly_physics::{Balls, Event, World as PhysicsWorld};
+use serde::{Deserialize, Serialize};
 
 use crate::scene::Scene;
 
@@ -168,6 +170,66 @@ pub struct Saved {
     /// On the GPU engine, its state copied back, and its balls as the
     /// scene made them.
     gpu: Option<(GpuSnapshot, Option<Balls>)>,
+}
+
+/// A [`Saved`] as it travels between processes: the scene as its text and
+/// name, the simulation as its state (see [`rolypoly_core::snapshot`]).
+#[derive(Serialize, Deserialize)]
+struct Carried {
+    scene: String,
+    name: String,
+    seed: u64,
+    sim: SimulationState,
+    pending: Vec<(u64, Event)>,
+    dropped: u64,
+    gpu: Option<(GpuSnapshot, Option<Balls>)>,
+}
+
+impl Saved {
+    /// The engine it was taken on.
+    pub fn engine(&self) -> Engine {
+        if self.gpu.is_some() {
+            Engine::Gpu
+        } else {
+            Engine::Cpu
+        }
+    }
+
+    /// As bytes, for another process or machine (see [`Saved::from_bytes`]).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        snapshot::encode(&Carried {
+            scene: self.scene.text(),
+            name: self.scene.name.clone(),
+            seed: self.seed,
+            sim: self.sim.state(),
+            pending: self.pending.clone(),
+            dropped: self.dropped,
+            gpu: self.gpu.clone(),
+        })
+    }
+
+    /// What [`Saved::to_bytes`] wrote: its simulation made afresh from the
+    /// scene and seed, its state then taken on. No graphics adapter is
+    /// needed, even for a snapshot of the GPU engine (its state stays bytes
+    /// until a world takes it on). Else why not, in a sentence.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Saved, String> {
+        let carried: Carried = snapshot::decode(bytes).map_err(|e| e.to_string())?;
+        let scene = Scene::from_text(&carried.scene, carried.name)
+            .map_err(|e| format!("this snapshot's scene does not read: {e}"))?;
+        let world = PhysicsWorld::new(scene.data.world.clone(), carried.seed)
+            .map_err(|e| format!("this snapshot's scene does not build: {e}"))?;
+        let mut sim = Simulation::new(world, scene.data.effects.clone(), carried.seed);
+        sim.set_state(carried.sim)
+            .map_err(|e| format!("this snapshot cannot be taken on: {e}"))?;
+        Ok(Saved {
+            sim,
+            scene,
+            seed: carried.seed,
+            pending: carried.pending,
+            dropped: carried.dropped,
+            gpu: carried.gpu,
+        })
+    }
 }
 
 impl Run {

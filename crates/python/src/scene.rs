@@ -67,6 +67,21 @@ impl Scene {
             name: format!("the {BUILTIN_ORIGIN}"),
         }
     }
+
+    /// The scene as a scene file (what `to_toml` gives, and what a scene
+    /// travels to other processes as).
+    pub fn text(&self) -> String {
+        scene_file_text(
+            &self.data,
+            &format!("Saved from {} by rolypoly (Python).", self.name),
+        )
+    }
+
+    /// The scene `text` (from [`Scene::text`]), named `name` again.
+    pub fn from_text(text: &str, name: String) -> Result<Scene, scene::SceneError> {
+        let data = parse_scene(text, &name)?;
+        Ok(Scene { data, name })
+    }
 }
 
 #[pymethods]
@@ -123,8 +138,7 @@ impl Scene {
     /// pickled scene is made again.
     #[staticmethod]
     fn _restore(text: &str, name: String) -> PyResult<Scene> {
-        let data = parse_scene(text, &name).map_err(|e| scene_error(&e))?;
-        Ok(Scene { data, name })
+        Scene::from_text(text, name).map_err(|e| scene_error(&e))
     }
 
     /// Pickled as its whole text and its name: scenes travel to other
@@ -178,10 +192,7 @@ impl Scene {
     /// The scene as a scene file: the keys that differ from the default
     /// scene. ``Scene.parse(scene.to_toml())`` gives the same scene.
     fn to_toml(&self) -> String {
-        scene_file_text(
-            &self.data,
-            &format!("Saved from {} by rolypoly (Python).", self.name),
-        )
+        self.text()
     }
 
     /// How the scene is named: "the built-in default scene" or

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use glam::DVec3;
 use pyo3::exceptions::PyRuntimeWarning;
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
+use pyo3::types::{PyBytes, PyTuple};
 use rolypoly_core::engine::Engine;
 use rolypoly_core::steps_for;
 
@@ -336,6 +336,42 @@ impl World {
         self.run.restore(&snapshot.saved).map_err(|e| gpu_error(&e))
     }
 
+    /// The world made again from ``scene``, ``seed`` and ``engine`` and put
+    /// back to ``snapshot``: how a pickled world is unpickled.
+    #[staticmethod]
+    fn _restore(
+        py: Python<'_>,
+        scene: &Bound<'_, Scene>,
+        seed: i128,
+        engine: &str,
+        snapshot: &Snapshot,
+    ) -> PyResult<World> {
+        let mut world = World::new(py, Some(scene), seed, Some(engine))?;
+        world.restore(snapshot)?;
+        Ok(world)
+    }
+
+    /// Pickled as its scene, seed, engine and a snapshot of its state, so
+    /// that a world sent to another process or machine steps on there to
+    /// the same bits. On the GPU engine, unpickling needs a graphics
+    /// adapter there too.
+    #[allow(clippy::type_complexity)]
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Scene, u64, &'static str, Snapshot))> {
+        let snapshot = self.snapshot()?;
+        Ok((
+            py.get_type::<World>().getattr("_restore")?,
+            (
+                self.run.scene.clone(),
+                self.run.seed,
+                self.run.engine().name(),
+                snapshot,
+            ),
+        ))
+    }
+
     /// Steps the world ``steps`` times, writing a JSON Lines trace to
     /// ``path`` as ``rolypoly simulate --trace PATH --steps STEPS --every
     /// EVERY`` writes it: the scene line, the state now, then a state line
@@ -431,6 +467,46 @@ impl Snapshot {
     #[getter]
     fn steps(&self) -> u64 {
         self.saved.sim.world.step_count()
+    }
+
+    /// The snapshot as bytes, to store or send to another process or
+    /// machine: :meth:`from_bytes` there gives it back. The bytes name the
+    /// version of rolypoly that wrote them; another version refuses them.
+    fn to_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        PyBytes::new(py, &self.saved.to_bytes())
+    }
+
+    /// The snapshot :meth:`to_bytes` wrote. Bytes that are not one, are
+    /// cut short, or come from another version raise ``ValueError``. A GPU
+    /// engine's snapshot reads without a graphics adapter; putting it
+    /// back into a world needs one.
+    #[staticmethod]
+    fn from_bytes(data: &[u8]) -> PyResult<Snapshot> {
+        let saved = Saved::from_bytes(data).map_err(value_error)?;
+        Ok(Snapshot { saved })
+    }
+
+    /// Pickled as its bytes.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        Ok((
+            py.get_type::<Snapshot>().getattr("from_bytes")?,
+            (self.to_bytes(py),),
+        ))
+    }
+
+    /// The seed of the world it was taken of.
+    #[getter]
+    fn seed(&self) -> u64 {
+        self.saved.seed
+    }
+
+    /// The engine of the world it was taken of: ``"cpu"`` or ``"gpu"``.
+    #[getter]
+    fn engine(&self) -> &'static str {
+        self.saved.engine().name()
     }
 
     fn __repr__(&self) -> String {

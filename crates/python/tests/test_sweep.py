@@ -65,6 +65,81 @@ def trace_hash(world):
             return hashlib.sha256(f.read()).hexdigest()
 
 
+@pytest.mark.parametrize("count, seed, steps", [(30, 2, 150), (400, 5, 90), (1500, 9, 200)])
+def test_a_snapshot_pickles_and_a_world_of_the_scene_steps_on_from_it_to_the_same_bits(count, seed, steps):
+    scene = rolypoly.Scene.default({"balls.count": count})
+    world = rolypoly.World(scene, seed=seed)
+    world.launch_fireball()
+    world.step(steps)
+    snap = world.snapshot()
+    data = pickle.dumps(snap)
+    again = pickle.loads(data)
+    assert (again.steps, again.time, again.seed, again.engine) == (snap.steps, snap.time, seed, "cpu")
+    assert again.to_bytes() == snap.to_bytes()
+    assert rolypoly.Snapshot.from_bytes(snap.to_bytes()).to_bytes() == snap.to_bytes()
+    # A world made elsewhere, of another seed, takes it on.
+    other = rolypoly.World(seed=seed + 40)
+    other.restore(again)
+    assert other.seed == seed and other.scene == scene and other.steps == steps
+    assert [e.to_dict() for e in other.events()] == [e.to_dict() for e in world.events()]
+    assert trace_hash(other) == trace_hash(world)
+
+
+@pytest.mark.parametrize("count, seed", [(30, 3), (700, 6)])
+def test_a_world_pickles_as_scene_seed_and_snapshot_and_steps_on_to_the_same_bits(count, seed):
+    world = rolypoly.World(rolypoly.Scene.default({"balls.count": count, "balls.friction": 0.4}), seed=seed)
+    world.launch_fireball()
+    world.step(120)
+    again = pickle.loads(pickle.dumps(world))
+    assert (again.seed, again.steps, again.engine) == (seed, 120, "cpu")
+    assert again.scene == world.scene and again.scene.name == world.scene.name
+    assert again.balls.positions.tobytes() == world.balls.positions.tobytes()
+    assert trace_hash(again) == trace_hash(world)
+
+
+def test_a_world_sent_to_another_process_steps_on_there_to_the_same_bits():
+    from concurrent.futures import ProcessPoolExecutor
+
+    world = rolypoly.World(rolypoly.Scene.default({"balls.count": 200}), seed=4)
+    world.step(100)
+    with ProcessPoolExecutor(max_workers=1) as pool:
+        there = pool.submit(trace_hash, world).result()
+    assert there == trace_hash(world)
+
+
+def test_a_snapshot_of_the_gpu_engine_pickles_and_steps_on_to_the_same_bits():
+    scene = rolypoly.Scene.default({"balls.count": 500})
+    world = rolypoly.World(scene, seed=2, engine="gpu")
+    world.launch_fireball()
+    world.step(60)
+    snap = pickle.loads(pickle.dumps(world.snapshot()))
+    assert snap.engine == "gpu"
+    other = rolypoly.World(scene, seed=3, engine="gpu")
+    other.restore(snap)
+    world.step(90)
+    other.step(90)
+    assert other.balls.positions.tobytes() == world.balls.positions.tobytes()
+    assert other.balls.velocities.tobytes() == world.balls.velocities.tobytes()
+    moved = pickle.loads(pickle.dumps(world))
+    assert moved.engine == "gpu"
+    assert trace_hash(moved) == trace_hash(world)
+    with pytest.raises(ValueError, match="on the gpu engine cannot be put back into a world on the cpu engine"):
+        rolypoly.World(scene).restore(snap)
+
+
+def test_bytes_that_are_no_snapshot_are_refused_by_name():
+    world = rolypoly.World(seed=1)
+    world.step(10)
+    data = world.snapshot().to_bytes()
+    with pytest.raises(ValueError, match="not a rolypoly snapshot"):
+        rolypoly.Snapshot.from_bytes(b"GIF89a and so on")
+    with pytest.raises(ValueError, match="damaged or cut short"):
+        rolypoly.Snapshot.from_bytes(data[: len(data) // 2])
+    with pytest.raises(ValueError, match="rolypoly 0.0.1"):
+        version = rolypoly.__version__.encode()
+        rolypoly.Snapshot.from_bytes(data.replace(bytes([len(version)]) + version, b"\x050.0.1", 1))
+
+
 GRID = {"balls.count": [8, 20], "balls.restitution": [0.4]}
 SEEDS = [1, 7]
 

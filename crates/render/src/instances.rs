@@ -28,6 +28,11 @@ pub struct Instance {
 }
 
 impl Instance {
+    /// What places its shadow: its model matrix, as numbers.
+    pub fn shadow_place(&self) -> [[f32; 4]; 4] {
+        self.model
+    }
+
     const ATTRIBUTES: [wgpu::VertexAttribute; 6] = wgpu::vertex_attr_array![
         3 => Float32x4, 4 => Float32x4, 5 => Float32x4, 6 => Float32x4, 7 => Float32x4, 8 => Float32x4
     ];
@@ -87,6 +92,11 @@ impl BallInstance {
     pub fn sphere(&self) -> (Vec3, f32) {
         let [x, y, z, r] = self.sphere;
         (Vec3::new(x, y, z), r)
+    }
+
+    /// What places its shadow: its centre and radius, as numbers.
+    pub fn shadow_place(&self) -> [f32; 4] {
+        self.sphere
     }
 
     const ATTRIBUTES: [wgpu::VertexAttribute; 2] =

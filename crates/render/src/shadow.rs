@@ -1,5 +1,6 @@
 //! The point light's shadow: six depth faces around the light (a cube map
-//! laid out as a 2D array), each drawn in its own pass every frame (R2).
+//! laid out as a 2D array), each drawn in its own pass (R2), and again only
+//! when what it sees moved ([`DrawnFaces`]).
 
 use glam::{Mat4, Vec3};
 use wgpu::util::DeviceExt;
@@ -88,6 +89,48 @@ pub fn sort_into_faces<T: Copy>(
         );
         start..out.len() as u32
     })
+}
+
+/// What each shadow face was last drawn from: the light and, face by face,
+/// where its casters were. A face whose light and casters are as they were
+/// holds the depths it would be drawn with, and is not drawn again: a room
+/// at rest draws no shadow faces at all, a ball rolling across one face
+/// redraws that face alone.
+#[derive(Default)]
+pub struct DrawnFaces {
+    light: Option<Vec3>,
+    /// Per face: the numbers that placed its casters (as bits), in the
+    /// order they were drawn.
+    casters: [Vec<u32>; 6],
+}
+
+impl DrawnFaces {
+    /// Which faces must be drawn for the light at `light`, whose casters
+    /// face by face are placed by the numbers `casters(face)` (a ball's
+    /// centre and radius, a tumbler's model matrix, one after another);
+    /// they are kept as drawn.
+    pub fn stale<I: Iterator<Item = f32>>(
+        &mut self,
+        light: Vec3,
+        mut casters: impl FnMut(usize) -> I,
+    ) -> [bool; 6] {
+        let moved_light = self.light != Some(light);
+        self.light = Some(light);
+        std::array::from_fn(|face| {
+            let kept = &mut self.casters[face];
+            let same = !moved_light && kept.iter().copied().eq(casters(face).map(f32::to_bits));
+            if !same {
+                kept.clear();
+                kept.extend(casters(face).map(f32::to_bits));
+            }
+            !same
+        })
+    }
+
+    /// Every face is to be drawn next time (their depths are not known).
+    pub fn forget(&mut self) {
+        self.light = None;
+    }
 }
 
 /// What a face is drawn with: its view-projection, and the light it looks

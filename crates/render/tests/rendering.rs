@@ -560,7 +560,10 @@ fn timestamps_are_written_only_while_timed_and_resolved_only_where_written() {
         let untimed = snap.draw(&view, &camera).expect("frame");
         assert_eq!(untimed.stamps, Default::default(), "shadows {shadows}");
         snap.renderer.set_gpu_timing(&snap.gpu, true);
-        let timed = snap.draw(&view, &camera).expect("frame");
+        // The light moved: every shadow face is drawn again.
+        let mut moved = view.clone();
+        moved.light.position.x += 0.1;
+        let timed = snap.draw(&moved, &camera).expect("frame");
         assert_eq!(
             timed.stamps.resolved, timed.stamps.written,
             "shadows {shadows}"
@@ -580,5 +583,64 @@ fn timestamps_are_written_only_while_timed_and_resolved_only_where_written() {
         snap.renderer.set_gpu_timing(&snap.gpu, false);
         let off_again = snap.draw(&view, &camera).expect("frame");
         assert_eq!(off_again.stamps, Default::default(), "shadows {shadows}");
+    }
+}
+
+/// A frame drawn with the frame before's shadow faces, where their casters
+/// did not move, and the same frame drawn anew with every face.
+fn drawn_after(
+    config: &WorldConfig,
+    before: &SceneView,
+    now: &SceneView,
+    camera: &Camera,
+) -> (u32, RgbaImage, RgbaImage) {
+    let settings = RenderSettings::default();
+    let mut kept = snapshot(config, settings, 160, 90);
+    kept.draw(before, camera).expect("frame");
+    let stats = kept
+        .target
+        .render(&kept.gpu, &mut kept.renderer, now, camera)
+        .expect("frame");
+    let frame = kept.target.read(&kept.gpu, "the frame").expect("read");
+    let anew = snapshot(config, settings, 160, 90)
+        .capture(now, camera)
+        .expect("frame");
+    (stats.shadow_faces, frame, anew)
+}
+
+#[test]
+fn a_shadow_face_is_drawn_again_only_when_its_light_or_casters_moved() {
+    for (seed, seconds) in [(1, 2.0), (4, 0.7)] {
+        let config = WorldConfig::default();
+        let world = world_at(&config, seed, seconds);
+        let view = SceneView::from_world(&world, None);
+        let camera = Camera::overview(view.room_size);
+
+        // Nothing moved: no face is drawn, and the frame is the same.
+        let (faces, frame, anew) = drawn_after(&config, &view, &view, &camera);
+        assert_eq!(faces, 0, "seed {seed}");
+        assert!(frame == anew, "seed {seed}: a frame of kept faces differs");
+
+        // One ball moved: the faces it was in or is in now, not all six.
+        let mut rolled = view.clone();
+        rolled.balls[3].position += Vec3::new(0.3, 0.0, -0.2);
+        let (faces, frame, anew) = drawn_after(&config, &view, &rolled, &camera);
+        assert!((1..6).contains(&faces), "seed {seed}: {faces} faces");
+        assert!(
+            frame == anew,
+            "seed {seed}: the moved ball's shadow is stale"
+        );
+
+        // A tumbler moved, and the light: every face the light lights anew.
+        let mut rocked = view.clone();
+        rocked.tumblers[0].position.x += 0.2;
+        let (faces, frame, anew) = drawn_after(&config, &view, &rocked, &camera);
+        assert!(faces >= 1, "seed {seed}");
+        assert!(frame == anew, "seed {seed}: the tumbler's shadow is stale");
+        let mut lamp = view.clone();
+        lamp.light.position.z += 0.05;
+        let (faces, frame, anew) = drawn_after(&config, &view, &lamp, &camera);
+        assert_eq!(faces, 6, "seed {seed}");
+        assert!(frame == anew, "seed {seed}");
     }
 }

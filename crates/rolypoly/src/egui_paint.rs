@@ -3,6 +3,16 @@
 
 use rolypoly_render::Gpu;
 
+/// What painting submitted, and how long submitting took: on a software
+/// renderer the submission may wait for the frame's own passes to be
+/// drawn, which is the GPU's time, not the painter's.
+pub struct Painted {
+    /// The submission, to wait for.
+    pub submitted: wgpu::SubmissionIndex,
+    /// Time spent in the queue's submit.
+    pub submit: std::time::Duration,
+}
+
 /// egui's renderer for frames of one colour format.
 pub struct EguiPainter {
     renderer: egui_wgpu::Renderer,
@@ -29,7 +39,7 @@ impl EguiPainter {
         mut output: egui::FullOutput,
         target: &wgpu::TextureView,
         size: [u32; 2],
-    ) -> wgpu::SubmissionIndex {
+    ) -> Painted {
         let pixels_per_point = output.pixels_per_point;
         let jobs = context.tessellate(std::mem::take(&mut output.shapes), pixels_per_point);
         let screen = egui_wgpu::ScreenDescriptor {
@@ -71,12 +81,13 @@ impl EguiPainter {
             let mut pass = pass.forget_lifetime();
             self.renderer.render(&mut pass, &jobs, &screen);
         }
-        let submitted = gpu
-            .queue
-            .submit(extra.into_iter().chain([encoder.finish()]));
+        let commands: Vec<_> = extra.into_iter().chain([encoder.finish()]).collect();
+        let submitting = std::time::Instant::now();
+        let submitted = gpu.queue.submit(commands);
+        let submit = submitting.elapsed();
         for id in output.textures_delta.free.drain() {
             self.renderer.free_texture(&id);
         }
-        submitted
+        Painted { submitted, submit }
     }
 }

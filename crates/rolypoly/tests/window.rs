@@ -184,9 +184,12 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
     );
     let w = s.window.clone();
 
-    // Once a second the frame rate, and the quality level auto chose.
+    // Once a second the frame rate, its frames' 95th percentile time, and
+    // the quality level auto chose.
     let rate = s.expect("the frame rate", |v| v["event"] == "frame_rate");
     assert!(number(&rate, "fps") > 0.0, "{rate}");
+    assert!(number(&rate, "p95_ms") > 0.0, "{rate}");
+    assert!(number(&rate, "at") >= 1.0, "{rate}");
     assert!(
         ["high", "medium", "low"].contains(&rate["quality"].as_str().unwrap_or("")),
         "{rate}"

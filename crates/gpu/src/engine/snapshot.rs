@@ -7,15 +7,60 @@ use super::GpuBalls;
 use crate::GpuError;
 use crate::layout::Params;
 use rolypoly_physics::Event;
+use serde::{Deserialize, Serialize};
 
-/// A copy of a [`GpuBalls`]' state (see [`GpuBalls::snapshot`]).
-#[derive(Clone)]
+/// A copy of a [`GpuBalls`]' state (see [`GpuBalls::snapshot`]). It
+/// serializes (to carry it to another process or machine), the step's
+/// constants as their bytes.
+#[derive(Clone, Serialize, Deserialize)]
+#[serde(into = "Carried", try_from = "Carried")]
 pub struct GpuSnapshot {
     params: Params,
     steps: u64,
     catches: Vec<Event>,
     /// Each stored buffer's bytes, in binding order.
     buffers: Vec<Vec<u8>>,
+}
+
+/// A [`GpuSnapshot`] as it travels: [`Params`] as its bytes, which must be
+/// as many as a `Params` has when they come back.
+#[derive(Serialize, Deserialize)]
+struct Carried {
+    params: Vec<u8>,
+    steps: u64,
+    catches: Vec<Event>,
+    buffers: Vec<Vec<u8>>,
+}
+
+impl From<GpuSnapshot> for Carried {
+    fn from(snapshot: GpuSnapshot) -> Carried {
+        Carried {
+            params: bytemuck::bytes_of(&snapshot.params).to_vec(),
+            steps: snapshot.steps,
+            catches: snapshot.catches,
+            buffers: snapshot.buffers,
+        }
+    }
+}
+
+impl TryFrom<Carried> for GpuSnapshot {
+    type Error = String;
+
+    fn try_from(carried: Carried) -> Result<GpuSnapshot, String> {
+        let params = bytemuck::try_pod_read_unaligned(&carried.params).map_err(|_| {
+            format!(
+                "the gpu engine's constants are {} bytes, not {}",
+                carried.params.len(),
+                std::mem::size_of::<Params>()
+            )
+        })?;
+        Ok(GpuSnapshot {
+            params,
+            steps: carried.steps,
+            catches: carried.catches,
+            buffers: carried.buffers,
+        })
+    }
 }
 
 impl GpuSnapshot {

@@ -19,6 +19,7 @@ use super::stages::Stage;
 use super::{FrictionImpulse, Pair};
 use crate::room::Surface;
 use glam::Vec3;
+use serde::{Deserialize, Serialize};
 
 /// Last step's normal impulses of ball pairs and ball-wall contacts, of
 /// both solver stages.
@@ -28,7 +29,7 @@ use glam::Vec3;
 /// so that looking them up walks memory nearly in order. Each slot's
 /// impulses lie packed one after the other: a lookup reads a few bytes, not
 /// room for every partner a ball could have.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub(crate) struct WarmStart {
     /// Per ball number: its slot last step (`NONE`: it had none).
     slot_of: Vec<u32>,
@@ -47,7 +48,7 @@ pub(crate) struct WarmStart {
 }
 
 /// Where one slot's impulses lie.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize)]
 struct Kept {
     /// `partners[first..first + pairs]`: the balls of later slots it pushed.
     first: u32,
@@ -88,7 +89,7 @@ fn held(impulses: StageImpulses) -> Held {
 
 /// A pair's friction impulses as kept (see [`Held`]), as they act on the
 /// ball of the lower number: a pair's slots may come in either order.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize)]
 struct HeldFriction {
     tangent: Vec3,
     rolling: Vec3,
@@ -119,13 +120,13 @@ impl HeldFriction {
 }
 
 /// A ball of a later slot that a slot's ball pushed (by number), and how hard.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize)]
 struct Partner {
     ball: u32,
     impulses: Held,
 }
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
 struct WallImpulse {
     surface: Surface,
     impulses: Held,

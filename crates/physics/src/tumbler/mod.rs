@@ -30,6 +30,7 @@
 
 use crate::config::TumblerPlacement;
 use glam::{DMat3, DQuat, DVec3};
+use serde::{Deserialize, Serialize};
 
 mod grounded;
 mod shape;
@@ -38,7 +39,7 @@ pub(crate) use grounded::{GroundedParams, grounded_solve};
 pub use shape::{TumblerShape, axis_extent};
 
 /// How the round bottom meets the floor during a step.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub(crate) enum FloorMode {
     Rolling,
     /// Slipping along this horizontal unit direction.
@@ -53,7 +54,7 @@ pub(crate) struct Response {
 }
 
 /// A spring-damper "hand" holding a tumbler at a point fixed in its body.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Grip {
     /// The grab point in the body frame (relative to the bottom sphere's centre).
     pub anchor: DVec3,
@@ -62,7 +63,7 @@ pub struct Grip {
 }
 
 /// One tumbler's state.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Tumbler {
     /// Centre of the bottom sphere; its height is always the floor + R.
     pub(crate) center: DVec3,

@@ -11,6 +11,7 @@
 
 use crate::tumbler::Grip;
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 use super::World;
 
@@ -22,7 +23,7 @@ const BALL_HAND_OMEGA: f64 = 20.0;
 const BALL_HAND_MAX_ACCELERATION: f64 = 500.0;
 
 /// A ball held by the hand: which, and the point it is pulled to.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub(crate) struct BallHold {
     pub ball: usize,
     pub target: DVec3,

@@ -58,11 +58,13 @@ mod pour;
 mod profile;
 mod report;
 mod spawn;
+mod state;
 
 pub use hand::{BallPick, Pick};
 pub use inspect::{ContactKind, ContactProbe};
 pub use profile::{Stage, StepTimes};
 pub use spawn::placement_problem;
+pub use state::{StateError, WorldState};
 
 /// A ball this close to a wall is touching it (metres).
 const TOUCH_SLOP: f64 = 1e-6;

@@ -5,6 +5,7 @@
 
 use crate::balls::Tint;
 use glam::DVec3;
+use serde::{Deserialize, Serialize};
 
 use super::{BuildError, World};
 
@@ -19,7 +20,7 @@ const TRIES_PER_BALL: usize = 4;
 const STREAM_SPEED: f64 = 1.0;
 
 /// Which random balls are still to pour, and how many are due.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub(super) struct Pour {
     /// The next ball to let go, and one past the last.
     next: usize,
@@ -32,6 +33,11 @@ impl Pour {
     /// Balls waiting to be poured.
     pub fn waiting(&self) -> usize {
         self.end - self.next
+    }
+
+    /// Whether the balls it would let go are among `balls` balls.
+    pub fn within(&self, balls: usize) -> bool {
+        self.next <= self.end && self.end <= balls && self.owed.is_finite()
     }
 }
 

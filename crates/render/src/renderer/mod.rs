@@ -1,6 +1,7 @@
 //! The frame, pass by pass (R4's order, and the light's effects):
 //!
-//! 1. [`Renderer::shadow_pass`]: the ceiling light's six shadow faces;
+//! 1. [`Renderer::shadow_pass`]: the ceiling light's shadow faces, those
+//!    whose casters or light moved;
 //! 2. [`Renderer::scene_pass`]: the lit, opaque scene and the unlit lamps in
 //!    linear HDR with MSAA, then the see-through particles;
 //! 3. the contact occlusion, from the surfaces the scene pass saw
@@ -19,7 +20,7 @@ use crate::instances::{self, BallInstance, Instance, InstanceBuffer, Ranges};
 use crate::irradiance::{DIRECTIONS, IrradianceVolume, MAX_PROBES};
 use crate::lighting;
 use crate::mesh::{GpuMesh, MeshData};
-use crate::shadow::{self, ShadowCube};
+use crate::shadow::{self, DrawnFaces, ShadowCube};
 use crate::view::{PointLight, SceneView};
 use bindings::Layouts;
 use bloom::BloomPipelines;
@@ -113,8 +114,15 @@ impl Default for RenderSettings {
 pub struct FrameStats {
     /// Draw calls the frame recorded.
     pub draw_calls: u32,
+    /// Shadow faces it drew: those whose light or casters moved (see
+    /// [`crate::shadow::DrawnFaces`]).
+    pub shadow_faces: u32,
     /// Time spent in our own code building and recording the frame.
     pub cpu_time: Duration,
+    /// Time spent submitting it: on a software renderer (lavapipe) the
+    /// submission may wait for frames before it to be drawn, the GPU's
+    /// time rather than ours.
+    pub submit: Duration,
     /// The GPU's time for each pass of the latest frame whose timestamps
     /// have come back, where the adapter has timestamp queries and the
     /// passes are timed (see [`Renderer::set_gpu_timing`]).
@@ -185,6 +193,8 @@ pub struct Renderer {
     marks: DebugMarksPass,
     /// The faces each caster reaches, reused frame to frame.
     faces_reached: Vec<u8>,
+    /// What each shadow face was last drawn from.
+    drawn_faces: DrawnFaces,
     /// The tumbler mesh's bounding sphere, in its own space.
     tumbler_bounds: (glam::Vec3, f32),
     targets: Option<Targets>,
@@ -276,6 +286,7 @@ impl Renderer {
             shadow_tumblers: InstanceBuffer::new(device, "shadow tumblers"),
             marks: DebugMarksPass::new(device, output_format),
             faces_reached: Vec::new(),
+            drawn_faces: DrawnFaces::default(),
             tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
             timer: None,
@@ -363,12 +374,17 @@ impl Renderer {
                 label: Some("frame"),
             });
         let mut draw_calls = 0;
+        let mut shadow_faces = 0;
         if self.settings.shadows {
             // Balls on the GPU are not listed face by face: that would read
             // them back.
             let culled = (self.settings.cull_shadow_faces && self.gpu_balls.is_none())
                 .then(|| self.sort_shadow_casters(gpu, view, &ranges));
-            draw_calls += self.shadow_pass(&mut encoder, &ranges, culled.as_ref(), timed);
+            let stale = self.stale_faces(view.light.position, culled.as_ref());
+            let (calls, faces) =
+                self.shadow_pass(&mut encoder, &ranges, culled.as_ref(), stale, timed);
+            draw_calls += calls;
+            shadow_faces = faces;
         }
         let scene_size = self
             .targets
@@ -412,14 +428,19 @@ impl Renderer {
         if timed && let Some(timer) = &mut self.timer {
             stamps = timer.resolve(&mut encoder);
         }
+        let commands = encoder.finish();
         let cpu_time = start.elapsed();
-        gpu.queue.submit([encoder.finish()]);
+        let submitting = Instant::now();
+        gpu.queue.submit([commands]);
+        let submit = submitting.elapsed();
         if timed && let Some(timer) = &mut self.timer {
             timer.submitted();
         }
         Ok(FrameStats {
             draw_calls,
+            shadow_faces,
             cpu_time,
+            submit,
             gpu: gpu_times,
             stamps,
         })
@@ -493,22 +514,47 @@ impl Renderer {
         FaceRanges { balls, tumblers }
     }
 
-    /// The ceiling light's six shadow faces: the balls and the tumblers
-    /// (the room's walls cast no shadow inside it), each only in the faces
-    /// `culled` lists it in, or with none, every one in every face.
+    /// The shadow faces to draw: where the casters are listed face by face
+    /// (`culled`), those whose light or casters moved since they were
+    /// drawn; else every face.
+    fn stale_faces(&mut self, light: glam::Vec3, culled: Option<&FaceRanges>) -> [bool; 6] {
+        let Some(culled) = culled else {
+            self.drawn_faces.forget();
+            return [true; 6];
+        };
+        let (balls, tumblers) = (&self.shadow_balls.items, &self.shadow_tumblers.items);
+        self.drawn_faces.stale(light, |face| {
+            let range = |r: &std::ops::Range<u32>| r.start as usize..r.end as usize;
+            let ball_places = balls[range(&culled.balls[face])]
+                .iter()
+                .flat_map(|b| b.shadow_place());
+            let tumbler_places = tumblers[range(&culled.tumblers[face])]
+                .iter()
+                .flat_map(|t| t.shadow_place().into_iter().flatten());
+            ball_places.chain(tumbler_places)
+        })
+    }
+
+    /// The ceiling light's shadow faces that are `stale`: the balls and
+    /// the tumblers (the room's walls cast no shadow inside it), each only
+    /// in the faces `culled` lists it in, or with none, every one in every
+    /// face. Returns the draw calls and the faces drawn.
     fn shadow_pass(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         ranges: &Ranges,
         culled: Option<&FaceRanges>,
+        stale: [bool; 6],
         timed: bool,
-    ) -> u32 {
+    ) -> (u32, u32) {
         let (balls, tumblers) = match culled {
             Some(_) => (&self.shadow_balls.buffer, &self.shadow_tumblers.buffer),
             None => (self.ball_source().0, &self.instances.buffer),
         };
+        let first = stale.iter().position(|&s| s);
+        let last = stale.iter().rposition(|&s| s);
         let mut draw_calls = 0;
-        for face in 0..6 {
+        for face in (0..6).filter(|&face| stale[face]) {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow face"),
                 color_attachments: &[],
@@ -520,12 +566,17 @@ impl Renderer {
                     }),
                     stencil_ops: None,
                 }),
-                // The first face's start and the last one's end.
+                // The first drawn face's start and the last one's end.
                 timestamp_writes: self
                     .timer
                     .as_ref()
-                    .filter(|_| timed && (face == 0 || face == 5))
-                    .map(|t| t.writes((face == 0).then_some(0), (face == 5).then_some(1))),
+                    .filter(|_| timed && (Some(face) == first || Some(face) == last))
+                    .map(|t| {
+                        t.writes(
+                            (Some(face) == first).then_some(0),
+                            (Some(face) == last).then_some(1),
+                        )
+                    }),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
@@ -540,7 +591,7 @@ impl Renderer {
                 culled.map_or(ranges.tumblers.clone(), |c| c.tumblers[face].clone());
             draw_calls += draw(&mut pass, &self.tumbler, tumbler_range);
         }
-        draw_calls
+        (draw_calls, stale.iter().filter(|&&s| s).count() as u32)
     }
 
     /// The lit scene into the HDR target, and the surfaces' normals and

@@ -19,7 +19,7 @@ use std::time::Duration;
 /// How long the GPU spent on each of a frame's passes.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PassTimes {
-    /// The six shadow faces.
+    /// The shadow faces drawn.
     pub shadow: Duration,
     /// The lit scene, the debug lines and the see-through particles.
     pub scene: Duration,

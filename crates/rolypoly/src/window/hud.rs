@@ -1,7 +1,7 @@
 //! The on-screen HUD (egui): frame rate, timings, counts, modes, the seed,
 //! a small plot of the total energy, and the help panel (I7).
 
-use crate::egui_paint::EguiPainter;
+use crate::egui_paint::{EguiPainter, Painted};
 use rolypoly_fx::Effects;
 use rolypoly_physics::World;
 use rolypoly_render::Gpu;
@@ -206,7 +206,7 @@ impl Hud {
         size: [u32; 2],
         s: &HudState,
         mut panel: impl FnMut(&mut egui::Ui),
-    ) -> wgpu::SubmissionIndex {
+    ) -> Painted {
         let raw = self.input.take_egui_input(window);
         let mut output = self.context.run_ui(raw, |ui| {
             panel(ui);

@@ -4,6 +4,7 @@
 
 mod app;
 pub(crate) mod fly_camera;
+mod frame_rate;
 mod hud;
 mod log;
 mod orbit_camera;

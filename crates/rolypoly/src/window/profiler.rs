@@ -32,8 +32,14 @@ pub struct FrameProfile {
     pub render_cpu: Duration,
     /// The HUD and panel on the CPU.
     pub ui: Duration,
+    /// Waiting on the GPU: for a surface texture and the frames in flight,
+    /// in the submissions (where a software renderer draws) and in
+    /// presenting. The GPU's time, not the pass that happened to wait.
+    pub gpu_wait: Duration,
     /// The GPU's passes, of the latest frame whose timestamps came back.
     pub gpu: Option<PassTimes>,
+    /// Shadow faces drawn (those whose casters or light moved).
+    pub shadow_faces: u32,
     /// Balls in play.
     pub balls: usize,
 }
@@ -72,12 +78,15 @@ impl Profiler {
             .show(ctx, |ui| {
                 let s = &last.steps;
                 ui.label(format!(
-                    "frame {:.1} ms: {} steps, physics {:.2} ms, rendering CPU {:.2} ms, HUD {:.2} ms",
+                    "frame {:.1} ms: {} steps, physics {:.2} ms, rendering CPU {:.2} ms, HUD CPU \
+                     {:.2} ms, waiting on the GPU {:.1} ms ({} shadow faces drawn)",
                     ms(last.frame),
                     last.step_count,
                     ms(s.total),
                     ms(last.render_cpu),
-                    ms(last.ui)
+                    ms(last.ui),
+                    ms(last.gpu_wait),
+                    last.shadow_faces
                 ));
                 ui.label(format!(
                     "balls {}, pairs {}, solver rows {}, impacts {}",
@@ -135,8 +144,8 @@ impl Profiler {
         charts
     }
 
-    /// The frame, the physics, the CPU's rendering and the GPU's passes,
-    /// over the frames kept.
+    /// The frame, the physics, the CPU's rendering, the wait on the GPU and
+    /// the GPU's passes, over the frames kept.
     fn lines(&self) -> Vec<Line<'static>> {
         let series = |name: &'static str, value: fn(&FrameProfile) -> Option<Duration>| {
             let points: Vec<[f64; 2]> = self
@@ -150,6 +159,7 @@ impl Profiler {
             series("frame", |f| Some(f.frame)),
             series("physics", |f| Some(f.steps.total)),
             series("rendering CPU", |f| Some(f.render_cpu)),
+            series("waiting on the GPU", |f| Some(f.gpu_wait)),
             series("GPU passes", |f| {
                 f.gpu.map(|g| g.named().iter().map(|(_, t)| *t).sum())
             }),
@@ -184,6 +194,6 @@ mod tests {
         assert_eq!(profiler.frames[0].at, 700.0 / 60.0);
         let charts = profiler.stage_bars();
         assert_eq!(charts.len(), Stage::ALL.len());
-        assert_eq!(profiler.lines().len(), 4);
+        assert_eq!(profiler.lines().len(), 5);
     }
 }

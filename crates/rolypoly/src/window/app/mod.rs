@@ -25,6 +25,7 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use super::fly_camera::FlyCamera;
+use super::frame_rate::FrameRate;
 use super::hud::{Hud, HudState};
 use super::log::EventLog;
 use super::orbit_camera::OrbitCamera;
@@ -145,9 +146,8 @@ struct App {
     /// The profiler (F3), and when the window opened (its plots' zero).
     profiler: Profiler,
     opened: Instant,
-    /// Frames drawn since the frame rate was last logged, and since when.
-    frames_counted: u32,
-    counting_since: Instant,
+    /// The frames since the frame rate was last logged.
+    frame_rate: FrameRate,
     running: Option<Running>,
     error: Option<anyhow::Error>,
 
@@ -195,8 +195,7 @@ impl App {
             last_simulation: Duration::ZERO,
             profiler: Profiler::default(),
             opened: Instant::now(),
-            frames_counted: 0,
-            counting_since: Instant::now(),
+            frame_rate: FrameRate::default(),
             sandbox,
             options,
             tumbler_spheres,
@@ -304,6 +303,9 @@ impl App {
         if r.config.width == 0 || r.config.height == 0 {
             return;
         }
+        // Acquiring the surface's texture and the frames in flight wait
+        // for the GPU (the profiler says so, not the pass after them).
+        let acquiring = Instant::now();
         let texture = match r.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t)
             | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
@@ -329,6 +331,7 @@ impl App {
             self.fail(event_loop, e.into());
             return;
         }
+        let acquire = acquiring.elapsed();
         let target = texture.texture.create_view(&Default::default());
         r.renderer.set_cursor(cursor);
         r.renderer.set_gpu_timing(&r.gpu, self.profiler.open);
@@ -346,27 +349,32 @@ impl App {
         let (panel, sandbox, profiler) = (&mut self.panel, &mut self.sandbox, &self.profiler);
         let mut action = None;
         let hud_started = Instant::now();
-        let submitted = r
+        let painted = r
             .hud
             .draw(&r.window, &r.gpu, &target, [w, h], &self.hud_state, |ui| {
                 action = panel.show(ui, sandbox);
                 profiler.show(ui.ctx());
                 crate::legend::show(ui.ctx(), &debug);
             });
+        let ui = hud_started.elapsed().saturating_sub(painted.submit);
         r.frames_submitted += 1;
-        r.in_flight.push_back((r.frames_submitted, submitted));
+        r.in_flight
+            .push_back((r.frames_submitted, painted.submitted));
+        let presenting = Instant::now();
+        r.gpu.queue.present(texture);
         self.profiler.push(FrameProfile {
             at: (now - self.opened).as_secs_f64(),
             frame: Duration::from_secs_f64(elapsed),
             steps,
             step_count,
             render_cpu: stats.cpu_time,
-            ui: hud_started.elapsed(),
+            ui,
+            gpu_wait: acquire + stats.submit + painted.submit + presenting.elapsed(),
             gpu: stats.gpu,
+            shadow_faces: stats.shadow_faces,
             balls,
         });
-        r.gpu.queue.present(texture);
-        self.count_frame();
+        self.count_frame(elapsed);
         if let Some(action) = action {
             self.act(action);
         }
@@ -446,17 +454,19 @@ impl App {
         );
     }
 
-    /// Logs the frames drawn a second, and at what level, once a second.
-    fn count_frame(&mut self) {
-        self.frames_counted += 1;
-        let seconds = self.counting_since.elapsed().as_secs_f64();
-        if seconds >= 1.0 {
+    /// Logs the frames drawn a second, their 95th percentile time, and at
+    /// what level, once a second; `elapsed`: this frame's time (s).
+    fn count_frame(&mut self, elapsed: f64) {
+        if let Some(report) = self.frame_rate.push(elapsed) {
             self.log.say(
                 "frame_rate",
-                json!({ "fps": f64::from(self.frames_counted) / seconds, "quality": self.quality.level().name() }),
+                json!({
+                    "fps": report.fps,
+                    "p95_ms": report.p95_ms,
+                    "quality": self.quality.level().name(),
+                    "at": self.opened.elapsed().as_secs_f64(),
+                }),
             );
-            self.frames_counted = 0;
-            self.counting_since = Instant::now();
         }
     }
 
