@@ -9,9 +9,6 @@ struct Params {
     // (0: no bloom); z: occlusion on (1) or off (0); w: the bloom's chain
     // has a second level (1) or not (0).
     values: vec4<f32>,
-    // xy: the output's size in pixels; z: the scene was lit at a lower
-    // resolution than the output (1) or at the same (0).
-    output: vec4<f32>,
 };
 @group(0) @binding(1) var<uniform> params: Params;
 @group(0) @binding(2) var glow: texture_2d<f32>;
@@ -53,13 +50,9 @@ fn glow_at(uv: vec2<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let uv = position.xy / params.output.xy;
-    // At the same resolution each pixel reads its own; at a lower one the
-    // filter spreads the scene over the output's pixels.
+    // Drawn at the size the scene was lit at: each pixel reads its own.
+    let uv = position.xy / vec2<f32>(textureDimensions(hdr));
     var color = textureLoad(hdr, vec2<i32>(position.xy), 0).rgb;
-    if params.output.z > 0.5 {
-        color = textureSampleLevel(hdr, smooth_sampler, uv, 0.0).rgb;
-    }
     if params.values.z > 0.5 {
         color *= open_at(uv);
     }

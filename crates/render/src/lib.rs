@@ -22,6 +22,7 @@ mod paint;
 mod quality;
 mod renderer;
 mod room;
+mod scale;
 mod shadow;
 mod snapshot;
 mod tumbler_mesh;
@@ -41,6 +42,7 @@ pub use paint::tumbler_paint;
 pub use quality::{AUTO_TARGET_FPS, AutoQuality, Quality, QualityChoice};
 pub use renderer::{FrameStats, PassTimes, RenderSettings, Renderer, StampSlots};
 pub use room::{Surface, surfaces as room_surfaces};
+pub use scale::{DynamicScale, MAX_SCALE, MIN_SCALE};
 pub use snapshot::Snapshot;
 pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
 pub use view::{

@@ -112,7 +112,9 @@ impl QualityChoice {
     }
 }
 
-/// Frames per second the automatic choice holds a window to.
+/// Frames per second the automatic choice holds a window to on a software
+/// renderer (with a GPU: the display's rate), unless `render.target_fps`
+/// says otherwise.
 pub const AUTO_TARGET_FPS: f64 = 30.0;
 /// Frames left unwatched after a level starts: the first ones build
 /// pipelines and targets, and say nothing of the level's pace.

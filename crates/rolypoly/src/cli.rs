@@ -105,10 +105,17 @@ pub struct WindowArgs {
     pub no_vsync: bool,
 
     /// How finely the window draws: high, medium, low, or auto, which
-    /// starts high and steps down while frames are slower than 30 a second
-    /// (default: the scene's render.quality, auto unless it says otherwise).
+    /// lowers the render scale, then steps down, while frames are slower
+    /// than the target (--fps) (default: the scene's render.quality, auto
+    /// unless it says otherwise).
     #[arg(long, value_name = "LEVEL", value_parser = parse_quality, help_heading = WINDOW_HEADING)]
     pub quality: Option<QualityChoice>,
+
+    /// The frames a second auto quality holds the window to, by its render
+    /// scale first (default: the scene's render.target_fps; 0 there: the
+    /// display's rate with a GPU, 30 on a software renderer).
+    #[arg(long, value_name = "FPS", value_parser = parse_fps, help_heading = WINDOW_HEADING)]
+    pub fps: Option<f64>,
 
     /// Multisample anti-aliasing in the window at every quality level: 4 or
     /// 1 (off) (default: the level's own).
@@ -519,6 +526,16 @@ fn parse_show(text: &str) -> Result<DebugViews, String> {
     DebugViews::parse(text)
 }
 
+/// A frame rate for the window to hold: more than 0, at most 1000.
+fn parse_fps(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(fps) if fps > 0.0 && fps <= 1000.0 => Ok(fps),
+        _ => Err(format!(
+            "`{text}` is not a frame rate: give frames a second, more than 0 and at most 1000"
+        )),
+    }
+}
+
 /// A quality level by name.
 fn parse_engine(text: &str) -> Result<Engine, String> {
     Engine::from_name(text.trim()).ok_or_else(|| {
@@ -720,6 +737,20 @@ mod tests {
             parse_speed("0.05").unwrap_err(),
             "0.05 is out of range: allowed 0.1 ..= 50"
         );
+    }
+
+    #[test]
+    fn a_target_frame_rate_is_more_than_nothing_and_at_most_a_thousand() {
+        let cli = Cli::try_parse_from(["rolypoly", "--fps", "60"]).unwrap();
+        assert_eq!(cli.window.fps, Some(60.0));
+        assert_eq!(Cli::try_parse_from(["rolypoly"]).unwrap().window.fps, None);
+        for bad in ["0", "-5", "1001", "fast", "NaN", "inf"] {
+            let flag = format!("--fps={bad}");
+            let error = Cli::try_parse_from(["rolypoly", flag.as_str()])
+                .unwrap_err()
+                .to_string();
+            assert!(error.contains("is not a frame rate"), "{bad}: {error}");
+        }
     }
 
     #[test]

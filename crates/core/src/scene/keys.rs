@@ -31,6 +31,8 @@ const MAX_INTENSITY: f64 = 100.0;
 const MAX_GRAB: f64 = 1e6;
 /// Largest master volume of the sound (a gain: +12 dB).
 const MAX_VOLUME: f64 = 4.0;
+/// Largest frame rate the window may be asked to hold.
+const MAX_TARGET_FPS: f64 = 1000.0;
 
 /// Where a value of type `T` lives in a [`Scene`].
 pub struct Place<T: 'static> {
@@ -414,7 +416,15 @@ pub static KEYS: &[Key] = &[
         Any,
         NextFrame,
         Choice("quality"),
-        "How finely frames are drawn; auto starts high and steps down while the window is slow; render and record draw auto as high (--quality).",
+        "How finely frames are drawn; auto lowers the window's render scale, then steps down, while frames are slower than render.target_fps; render and record draw auto as high (--quality).",
+    ),
+    key_of(
+        "render.target_fps",
+        Real(place!(target_fps)),
+        Within(Bounds::closed(0.0, MAX_TARGET_FPS)),
+        NextFrame,
+        Slider("target fps", 0.0, 240.0),
+        "The frames a second auto quality holds the window to, by its render scale first; 0: the display's rate with a GPU, 30 on a software renderer (--fps).",
     ),
     key_of(
         "sound.enabled",

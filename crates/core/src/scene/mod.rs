@@ -128,6 +128,10 @@ pub struct Scene {
     pub light: LightConfig,
     /// How finely frames are drawn (`render.quality`).
     pub quality: QualityChoice,
+    /// The frames a second the window's auto quality holds
+    /// (`render.target_fps`); 0: the display's rate with a GPU, 30 on a
+    /// software renderer.
+    pub target_fps: f64,
     /// Which engine steps the balls (`solver.engine`).
     pub engine: Engine,
     /// The sound (`[sound]`).

@@ -20,6 +20,8 @@ pub(super) struct Layouts {
     /// Tone mapping: the HDR frame, its parameters, the bloom's glow, the
     /// contact occlusion and a bilinear sampler for those two.
     pub tonemap: wgpu::BindGroupLayout,
+    /// The frame tone-mapped at the lit resolution, and the bilinear filter.
+    pub upscale: wgpu::BindGroupLayout,
 }
 
 impl Layouts {
@@ -73,10 +75,15 @@ impl Layouts {
                 filtering_sampler_entry(4),
             ],
         });
+        let upscale = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("upscale"),
+            entries: &[texture_entry(0, true), filtering_sampler_entry(1)],
+        });
         Layouts {
             scene,
             face,
             tonemap,
+            upscale,
         }
     }
 }

@@ -8,7 +8,8 @@
 //!    ([`occlusion`]);
 //! 4. the bloom's chain down and up ([`bloom`]);
 //! 5. [`Renderer::tonemap_pass`]: occlusion, glow and the filmic curve into
-//!    the output, and the drawn cursor over it.
+//!    the output (lit at a lower resolution: at that resolution, then
+//!    spread over the output), and the drawn cursor over it.
 //!
 //! The parts, a file each: what the shaders read ([`bindings`]), how each
 //! kind of thing is drawn ([`pipelines`]), the targets a frame is drawn
@@ -169,6 +170,7 @@ pub struct Renderer {
     bloom: BloomPipelines,
     occlusion: OcclusionPipeline,
     tonemap_layout: wgpu::BindGroupLayout,
+    upscale_layout: wgpu::BindGroupLayout,
     smooth_sampler: wgpu::Sampler,
     cursor: Cursor,
     globals: wgpu::Buffer,
@@ -237,7 +239,7 @@ impl Renderer {
         });
         let tonemap_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("tonemap params"),
-            contents: bytemuck::cast_slice(&[settings.exposure, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0]),
+            contents: bytemuck::cast_slice(&[settings.exposure, 0.0, 0.0, 0.0]),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let shadow_cube = ShadowCube::new(device, settings.shadow_size, &layouts.face);
@@ -261,6 +263,7 @@ impl Renderer {
             bloom: BloomPipelines::new(device),
             occlusion: OcclusionPipeline::new(device),
             tonemap_layout: layouts.tonemap,
+            upscale_layout: layouts.upscale,
             smooth_sampler: device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some("smooth"),
                 address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -310,9 +313,20 @@ impl Renderer {
         self.cursor.at = pixel;
     }
 
-    /// How it draws, as made.
+    /// How it draws now.
     pub fn settings(&self) -> RenderSettings {
         self.settings
+    }
+
+    /// Lights the scene at `share` of the output's width and height from
+    /// the next frame on (the window's scale, see [`crate::DynamicScale`]);
+    /// the targets are made anew when the share changes.
+    pub fn set_resolution(&mut self, share: f32) {
+        let share = share.clamp(0.05, 1.0);
+        if share != self.settings.resolution {
+            self.settings.resolution = share;
+            self.targets = None;
+        }
     }
 
     /// The colour format it draws into.
@@ -416,10 +430,6 @@ impl Renderer {
             glow,
             flag(view.light.occlusion),
             flag(targets.bloom.levels > 1),
-            width as f32,
-            height as f32,
-            flag(targets.scene_size != (width, height)),
-            0.0,
         ];
         gpu.queue
             .write_buffer(&self.tonemap_params, 0, bytemuck::cast_slice(&params));
@@ -658,7 +668,11 @@ impl Renderer {
     }
 
     /// The HDR frame, darkened by the occlusion and glowing, tone-mapped
-    /// into `output`, with the cursor on top.
+    /// into `output`, with the debug marks and the cursor on top. Lit at a
+    /// lower resolution than the output, it is tone-mapped at that
+    /// resolution and then spread over the output with one bilinear read a
+    /// pixel: tone mapping reads seven texels a pixel, which at the
+    /// output's resolution cost a software renderer more than the scene.
     fn tonemap_pass(
         &self,
         queue: &wgpu::Queue,
@@ -667,31 +681,36 @@ impl Renderer {
         output: &wgpu::TextureView,
         timed: bool,
     ) -> u32 {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("tonemap"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: output,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: self
-                .timer
+        let stamps = |start: Option<u32>, end: Option<u32>| {
+            self.timer
                 .as_ref()
                 .filter(|_| timed)
-                .map(|t| t.writes(Some(4), Some(5))),
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipelines.tonemap);
-        pass.set_bind_group(0, &targets.tonemap_bind_group, &[]);
+                .map(|t| t.writes(start, end))
+        };
+        let mut draw_calls = 0;
+        let (last, last_stamps) = match &targets.composed {
+            Some((composed, upscale)) => {
+                let mut pass = screen_pass(encoder, composed, stamps(Some(4), None));
+                pass.set_pipeline(&self.pipelines.tonemap);
+                pass.set_bind_group(0, &targets.tonemap_bind_group, &[]);
+                pass.draw(0..3, 0..1);
+                drop(pass);
+                draw_calls += 1;
+                ((&self.pipelines.upscale, upscale), stamps(None, Some(5)))
+            }
+            None => (
+                (&self.pipelines.tonemap, &targets.tonemap_bind_group),
+                stamps(Some(4), Some(5)),
+            ),
+        };
+        let mut pass = screen_pass(encoder, output, last_stamps);
+        pass.set_pipeline(last.0);
+        pass.set_bind_group(0, last.1, &[]);
         pass.draw(0..3, 0..1);
         // The debug views over the finished frame, the cursor over them.
-        1 + self.marks.draw(&mut pass, &targets.marks_bind_group)
+        draw_calls
+            + 1
+            + self.marks.draw(&mut pass, &targets.marks_bind_group)
             + self
                 .cursor
                 .draw(queue, &mut pass, targets.width, targets.height)
@@ -712,6 +731,8 @@ impl Renderer {
         let kit = TargetKit {
             samples: self.settings.msaa,
             tonemap_layout: &self.tonemap_layout,
+            upscale_layout: &self.upscale_layout,
+            output_format: self.output_format,
             tonemap_params: &self.tonemap_params,
             smooth_sampler: &self.smooth_sampler,
             bloom: &self.bloom,
@@ -781,6 +802,30 @@ impl Irradiance {
         debug_assert_eq!(self.texels.len(), slab * DIRECTIONS.len());
         counts
     }
+}
+
+/// A pass over the whole of `target`, cleared first.
+fn screen_pass<'a>(
+    encoder: &'a mut wgpu::CommandEncoder,
+    target: &'a wgpu::TextureView,
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'a>>,
+) -> wgpu::RenderPass<'a> {
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some("tonemap"),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: target,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations {
+                load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                store: wgpu::StoreOp::Store,
+            },
+        })],
+        depth_stencil_attachment: None,
+        timestamp_writes,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
 }
 
 /// A colour attachment that is drawn into `multi` and resolved into

@@ -21,8 +21,11 @@ pub(super) struct Pipelines {
     pub shadow: wgpu::RenderPipeline,
     /// Balls into a shadow face.
     pub ball_shadow: wgpu::RenderPipeline,
-    /// The HDR frame, tone-mapped into the output.
+    /// The HDR frame, tone-mapped into the output (or, lit at a lower
+    /// resolution, into a target of its own size).
     pub tonemap: wgpu::RenderPipeline,
+    /// The frame tone-mapped at a lower resolution, spread over the output.
+    pub upscale: wgpu::RenderPipeline,
 }
 
 impl Pipelines {
@@ -223,6 +226,20 @@ impl Pipelines {
             output_format.into(),
         );
 
+        let upscale_shader = screen_shader(
+            device,
+            "upscale.wgsl",
+            include_str!("../../shaders/upscale.wgsl"),
+        );
+        let upscale_pipeline = screen_pipeline(
+            device,
+            "upscale",
+            &layouts.upscale,
+            &upscale_shader,
+            ("vs_screen", "fs_upscale"),
+            output_format.into(),
+        );
+
         Pipelines {
             lit: scene_pipeline,
             ball: ball_pipeline,
@@ -231,6 +248,7 @@ impl Pipelines {
             shadow: shadow_pipeline,
             ball_shadow: ball_shadow_pipeline,
             tonemap: tonemap_pipeline,
+            upscale: upscale_pipeline,
         }
     }
 }

@@ -1,6 +1,8 @@
 //! The frame's own render targets, made for its size: the HDR colour it is
 //! lit into and the surfaces' normals and distances (multisampled, then
-//! resolved), its depth, the bloom's chain and the contact occlusion, and tone mapping's bind group over them.
+//! resolved), its depth, the bloom's chain and the contact occlusion, tone
+//! mapping's bind group over them, and where the scene is lit at a lower
+//! resolution, the frame tone-mapped at it for the upscale.
 
 use super::bloom::{BloomChain, BloomPipelines};
 use super::debug_marks::DebugMarksPass;
@@ -27,6 +29,10 @@ pub(super) struct Targets {
     pub tonemap_bind_group: wgpu::BindGroup,
     /// Reads `geometry` for the debug marks' depth.
     pub marks_bind_group: wgpu::BindGroup,
+    /// Where the scene is lit at a lower resolution than the output: the
+    /// frame tone-mapped at that resolution, and the upscale's bind group
+    /// over it.
+    pub composed: Option<(wgpu::TextureView, wgpu::BindGroup)>,
 }
 
 /// What the targets are made with besides their size.
@@ -38,6 +44,9 @@ pub(super) struct TargetKit<'a> {
     pub bloom: &'a BloomPipelines,
     pub occlusion: &'a OcclusionPipeline,
     pub marks: &'a DebugMarksPass,
+    pub upscale_layout: &'a wgpu::BindGroupLayout,
+    /// The output's colour format, which the frame is tone-mapped into.
+    pub output_format: wgpu::TextureFormat,
 }
 
 impl Targets {
@@ -119,6 +128,24 @@ impl Targets {
             ],
         });
         let marks_bind_group = kit.marks.bind_group(device, &geometry);
+        let composed = (scene_size != (width, height)).then(|| {
+            let view = texture("composed", kit.output_format, 1, drawn_and_read);
+            let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("upscale"),
+                layout: kit.upscale_layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::Sampler(kit.smooth_sampler),
+                    },
+                ],
+            });
+            (view, bind_group)
+        });
         Targets {
             width,
             height,
@@ -132,6 +159,7 @@ impl Targets {
             occlusion,
             tonemap_bind_group,
             marks_bind_group,
+            composed,
         }
     }
 }

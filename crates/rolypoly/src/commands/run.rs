@@ -23,6 +23,9 @@ pub fn window(
     if let Some(quality) = args.quality {
         scene.quality = quality;
     }
+    if let Some(fps) = args.fps {
+        scene.target_fps = fps;
+    }
     let name = path.map_or_else(|| "default.toml".to_owned(), |p| p.display().to_string());
     crate::window::run(Sandbox::with_world(world, scene, &name, seed), options)
 }

@@ -14,8 +14,8 @@ use anyhow::Context as _;
 use glam::{Vec2, Vec3};
 use rolypoly_physics::SphereSpec;
 use rolypoly_render::{
-    Camera, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, Quality, QualityChoice,
-    RenderSettings, Renderer,
+    AUTO_TARGET_FPS, Camera, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, Quality,
+    QualityChoice, RenderSettings, Renderer,
 };
 use serde_json::json;
 use winit::application::ApplicationHandler;
@@ -25,13 +25,13 @@ use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
 use super::fly_camera::FlyCamera;
-use super::frame_rate::FrameRate;
+use super::frame_rate::{FrameParts, FrameRate};
 use super::hud::{Hud, HudState};
 use super::log::EventLog;
 use super::orbit_camera::OrbitCamera;
 use super::panel::Panel;
 use super::profiler::{FrameProfile, Profiler};
-use super::quality::WindowQuality;
+use super::quality::{QualityChange, WindowQuality};
 use super::sound::LiveSound;
 use crate::sandbox::{MAX_CATCH_UP, Sandbox};
 use input::{Keys, MouseMode};
@@ -103,6 +103,15 @@ struct Running {
     in_flight: std::collections::VecDeque<(u64, wgpu::SubmissionIndex)>,
     /// Frames submitted since the window opened.
     frames_submitted: u64,
+    /// The frames a second auto holds where the scene leaves it open: the
+    /// display's rate with a GPU, [`AUTO_TARGET_FPS`] on a software
+    /// renderer.
+    default_fps: f64,
+}
+
+/// The scene's `render.target_fps`, unless it is 0 (left open).
+fn chosen_fps(target_fps: f64) -> Option<f64> {
+    (target_fps > 0.0).then_some(target_fps)
 }
 
 /// Frames the GPU may have queued before the next waits, within the
@@ -190,7 +199,11 @@ impl App {
             camera_recorded: camera,
             hud_state: HudState::new(options.seed, world.balls().len()),
             panel: Panel::new(options.scene_file.clone()),
-            quality: WindowQuality::new(sandbox.scene().quality, options.msaa),
+            quality: WindowQuality::new(
+                sandbox.scene().quality,
+                chosen_fps(sandbox.scene().target_fps).unwrap_or(AUTO_TARGET_FPS),
+                options.msaa,
+            ),
             sound: LiveSound::open(&sandbox.scene().sound, &sandbox.sim),
             last_simulation: Duration::ZERO,
             profiler: Profiler::default(),
@@ -362,6 +375,13 @@ impl App {
             .push_back((r.frames_submitted, painted.submitted));
         let presenting = Instant::now();
         r.gpu.queue.present(texture);
+        let gpu_wait = acquire + stats.submit + painted.submit + presenting.elapsed();
+        let parts = FrameParts {
+            simulation: self.last_simulation.as_secs_f64(),
+            render_cpu: stats.cpu_time.as_secs_f64(),
+            hud_cpu: ui.as_secs_f64(),
+            gpu_wait: gpu_wait.as_secs_f64(),
+        };
         self.profiler.push(FrameProfile {
             at: (now - self.opened).as_secs_f64(),
             frame: Duration::from_secs_f64(elapsed),
@@ -369,12 +389,12 @@ impl App {
             step_count,
             render_cpu: stats.cpu_time,
             ui,
-            gpu_wait: acquire + stats.submit + painted.submit + presenting.elapsed(),
+            gpu_wait,
             gpu: stats.gpu,
             shadow_faces: stats.shadow_faces,
             balls,
         });
-        self.count_frame(elapsed);
+        self.count_frame(elapsed, parts);
         if let Some(action) = action {
             self.act(action);
         }
@@ -456,39 +476,67 @@ impl App {
 
     /// Logs the frames drawn a second, their 95th percentile time, and at
     /// what level, once a second; `elapsed`: this frame's time (s).
-    fn count_frame(&mut self, elapsed: f64) {
-        if let Some(report) = self.frame_rate.push(elapsed) {
+    fn count_frame(&mut self, elapsed: f64, parts: FrameParts) {
+        if let Some(report) = self.frame_rate.push(elapsed, parts) {
+            let m = report.mean_ms;
             self.log.say(
                 "frame_rate",
                 json!({
                     "fps": report.fps,
                     "p95_ms": report.p95_ms,
+                    "mean_ms": {
+                        "simulation": m.simulation,
+                        "render_cpu": m.render_cpu,
+                        "hud_cpu": m.hud_cpu,
+                        "gpu_wait": m.gpu_wait,
+                    },
                     "quality": self.quality.level().name(),
+                    "scale": self.quality.scale(),
                     "at": self.opened.elapsed().as_secs_f64(),
                 }),
             );
         }
     }
 
-    /// Takes the scene's quality level and the last frame's drawing time;
-    /// where the level changes, the renderer is made anew for it.
+    /// The frames a second auto holds now: the scene's, or the default of
+    /// the window's adapter and display.
+    fn target_fps(&self) -> f64 {
+        chosen_fps(self.sandbox.scene().target_fps).unwrap_or_else(|| {
+            self.running
+                .as_ref()
+                .map_or(AUTO_TARGET_FPS, |r| r.default_fps)
+        })
+    }
+
+    /// Takes the scene's quality level, the target frame rate and the last
+    /// frame's drawing time; where the scale changes the renderer lights
+    /// the next frame at it, where the level changes it is made anew.
     fn follow_quality(&mut self, drawing: Duration) {
-        let changed = self.quality.update(self.sandbox.scene().quality, drawing);
+        let target = self.target_fps();
+        let change = self
+            .quality
+            .update(self.sandbox.scene().quality, target, drawing);
         self.hud_state.quality = self.quality.describe();
-        let Some(r) = self.running.as_mut().filter(|_| changed) else {
+        let Some(r) = self.running.as_mut() else {
             return;
         };
-        r.renderer = Renderer::new(
-            &r.gpu,
-            self.quality.settings(),
-            r.renderer.output_format(),
-            &self.tumbler_mesh,
-            &self.paint,
-        );
-        self.log.say(
-            "quality",
-            json!({ "level": self.quality.level().name(), "why": self.hud_state.quality }),
-        );
+        match change {
+            QualityChange::None => {}
+            QualityChange::Scale => r.renderer.set_resolution(self.quality.scale()),
+            QualityChange::Level => {
+                r.renderer = Renderer::new(
+                    &r.gpu,
+                    self.quality.settings(),
+                    r.renderer.output_format(),
+                    &self.tumbler_mesh,
+                    &self.paint,
+                );
+                self.log.say(
+                    "quality",
+                    json!({ "level": self.quality.level().name(), "scale": self.quality.scale(), "why": self.hud_state.quality }),
+                );
+            }
+        }
     }
 
     fn log_camera(&self) {

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use anyhow::Context as _;
 use glam::Vec2;
-use rolypoly_render::{Gpu, Renderer};
+use rolypoly_render::{AUTO_TARGET_FPS, Gpu, Renderer};
 use serde_json::json;
 use winit::dpi::PhysicalSize;
 use winit::event_loop::ActiveEventLoop;
@@ -107,6 +107,13 @@ impl App {
                 "balls": self.sandbox.sim.ball_count(),
             }),
         );
+        // A software renderer cannot keep up with a display; a GPU aims at
+        // the display's rate (60 where the display does not say).
+        let software = gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+        let display_fps = window
+            .current_monitor()
+            .and_then(|monitor| monitor.refresh_rate_millihertz())
+            .map_or(60.0, |mhz| f64::from(mhz) / 1e3);
         Ok(Running {
             window,
             gpu,
@@ -116,6 +123,11 @@ impl App {
             hud,
             in_flight: Default::default(),
             frames_submitted: 0,
+            default_fps: if software {
+                AUTO_TARGET_FPS
+            } else {
+                display_fps
+            },
         })
     }
 }
