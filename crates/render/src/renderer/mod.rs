@@ -115,8 +115,8 @@ impl Default for RenderSettings {
 pub struct FrameStats {
     /// Draw calls the frame recorded.
     pub draw_calls: u32,
-    /// Shadow faces it drew: those whose light or casters moved (see
-    /// [`crate::shadow::DrawnFaces`]).
+    /// Shadow faces it drew: those whose light or casters moved since they
+    /// were last drawn.
     pub shadow_faces: u32,
     /// Time spent in our own code building and recording the frame.
     pub cpu_time: Duration,
