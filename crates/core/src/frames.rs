@@ -35,7 +35,17 @@ pub struct FrameOptions {
     pub tumbler_obj: Option<PathBuf>,
     /// The debug views drawn over every frame.
     pub show: Option<DebugViews>,
+    /// Share of the width and height the scene is lit at (default: the
+    /// quality level's).
+    pub scale: Option<f32>,
+    /// Temporal anti-aliasing with upsampling (see
+    /// [`rolypoly_render::jitter`]): every frame drawn adds to the next.
+    pub temporal: bool,
 }
+
+/// Frames a second of the frames drawn before a temporal picture's moment,
+/// for its history: a display's rate.
+pub const HISTORY_FPS: f64 = 60.0;
 
 /// Something drawn over every frame before it is read back: the program
 /// draws the debug views' legend so.
@@ -86,6 +96,8 @@ impl Frames {
             shadow_size: args.shadow_size.unwrap_or(drawn.shadow_size),
             shadow_taps: args.shadow_taps.unwrap_or(drawn.shadow_taps),
             shadows: !args.no_shadows,
+            resolution: args.scale.unwrap_or(drawn.resolution),
+            temporal: args.temporal,
             ..drawn
         };
         let snapshot = Snapshot::new(config, settings, width, height, mesh)?;
@@ -98,6 +110,39 @@ impl Frames {
             debug: args.show.unwrap_or_default(),
             overlay: None,
         })
+    }
+
+    /// Whether each frame adds to a history that the next frame draws on
+    /// (the temporal path).
+    pub fn temporal(&self) -> bool {
+        self.snapshot.renderer.settings().temporal
+    }
+
+    /// The frame of `sim` at the moment `steps` steps from its start, which
+    /// it is run to: on the temporal path, drawn after the frames of the
+    /// [`HISTORY_FRAMES`](rolypoly_render::HISTORY_FRAMES) moments before
+    /// it, [`HISTORY_FPS`] a second apart (or from the start, where the
+    /// moment comes sooner: frames of the first moment, the jitter moving),
+    /// so that the picture holds its history.
+    pub fn draw_at(
+        &mut self,
+        sim: &mut Simulation,
+        steps: u64,
+        light: &LightConfig,
+    ) -> anyhow::Result<image::RgbaImage> {
+        if self.temporal() {
+            let apart = crate::steps_for(1.0 / HISTORY_FPS, sim.world.config().solver.dt).max(1);
+            let camera = self.camera;
+            for k in (1..=rolypoly_render::HISTORY_FRAMES).rev() {
+                let at = steps.saturating_sub(u64::from(k) * apart);
+                sim.ticks(at.saturating_sub(sim.world.step_count()));
+                sim.check_gpu()?;
+                self.render(sim, light, &camera)?;
+            }
+        }
+        sim.ticks(steps.saturating_sub(sim.world.step_count()));
+        sim.check_gpu()?;
+        self.draw(sim, light)
     }
 
     /// The GPU the frames are drawn on.
@@ -133,15 +178,27 @@ impl Frames {
         camera: &Camera,
     ) -> anyhow::Result<image::RgbaImage> {
         let what = format!("the frame at t = {:.3} s", sim.world.time());
-        let view = sim.view_showing(light, &self.debug);
+        self.render(sim, light, camera)?;
         let snap = &mut self.snapshot;
-        snap.target
-            .render(&snap.gpu, &mut snap.renderer, &view, camera)?;
         if let Some(overlay) = &mut self.overlay {
             let size = [snap.target.width, snap.target.height];
             overlay.draw(&snap.gpu, snap.target.view(), size, &self.debug);
         }
         Ok(snap.target.read(&snap.gpu, &what)?)
+    }
+
+    /// Draws the frame of `sim` now without reading it back.
+    fn render(
+        &mut self,
+        sim: &Simulation,
+        light: &LightConfig,
+        camera: &Camera,
+    ) -> anyhow::Result<()> {
+        let view = sim.view_showing(light, &self.debug);
+        let snap = &mut self.snapshot;
+        snap.target
+            .render(&snap.gpu, &mut snap.renderer, &view, camera)?;
+        Ok(())
     }
 
     /// The device the frames are drawn with.
@@ -164,10 +221,17 @@ impl Frames {
 
     /// How the frames are drawn, in words, and on what.
     pub fn describe(&self) -> String {
+        let settings = self.snapshot.renderer.settings();
+        let scale = if settings.resolution < 1.0 {
+            format!(", lit at {:.2} of the size", settings.resolution)
+        } else {
+            String::new()
+        };
+        let temporal = if settings.temporal { ", temporal" } else { "" };
         format!(
-            "quality {}, MSAA {}x, shadows {}, on {}",
+            "quality {}, MSAA {}x{scale}{temporal}, shadows {}, on {}",
             self.level.name(),
-            self.snapshot.renderer.settings().msaa,
+            settings.msaa,
             if self.shadows { "on" } else { "off" },
             self.snapshot.gpu.describe()
         )

@@ -27,7 +27,7 @@ mod scene;
 mod tonemap;
 mod trace;
 
-pub use compare::{Comparison, FLIP_PIXELS_PER_DEGREE, compare};
+pub use compare::{Comparison, FLIP_PIXELS_PER_DEGREE, compare, ssim};
 pub use geometry::Ray;
 pub use hdr::write_exr;
 pub use light::SphereLight;

@@ -36,6 +36,11 @@ struct Globals {
     // xyz: the irradiance volume's probes along each axis; w: its texture's
     // probes along each axis and direction.
     irradiance_probes: vec4<f32>,
+    // The view-projection without the temporal path's jitter (view_proj
+    // has it), and the last frame's: a surface's motion on screen is
+    // measured between the two (see `motion_of`).
+    motion_view_proj: mat4x4<f32>,
+    previous_view_proj: mat4x4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> globals: Globals;
@@ -66,6 +71,14 @@ struct InstanceIn {
     @location(8) material: vec4<f32>,
 };
 
+// The same object's model matrix the frame before, for its motion.
+struct PreviousIn {
+    @location(9) m0: vec4<f32>,
+    @location(10) m1: vec4<f32>,
+    @location(11) m2: vec4<f32>,
+    @location(12) m3: vec4<f32>,
+};
+
 const KIND_PLAIN: f32 = 0.0;
 const KIND_WOOD: f32 = 1.0;
 const KIND_PAINTED: f32 = 2.0;
@@ -78,6 +91,8 @@ struct VertexOut {
     // Flat: the same for the whole object, and compared exactly below.
     @location(3) @interpolate(flat) color: vec4<f32>,
     @location(4) @interpolate(flat) material: vec4<f32>,
+    // Where this point of the object was the frame before.
+    @location(5) previous: vec3<f32>,
 };
 
 fn model_of(i: InstanceIn) -> mat4x4<f32> {
@@ -85,12 +100,13 @@ fn model_of(i: InstanceIn) -> mat4x4<f32> {
 }
 
 @vertex
-fn vs_scene(v: VertexIn, i: InstanceIn) -> VertexOut {
+fn vs_scene(v: VertexIn, i: InstanceIn, before: PreviousIn) -> VertexOut {
     let model = model_of(i);
     let world = model * vec4<f32>(v.position, 1.0);
     var out: VertexOut;
     out.clip = globals.view_proj * world;
     out.world = world.xyz;
+    out.previous = (mat4x4<f32>(before.m0, before.m1, before.m2, before.m3) * vec4<f32>(v.position, 1.0)).xyz;
     // Models carry rotation and uniform scale only, so the model matrix
     // turns normals correctly once they are renormalised.
     out.normal = normalize((model * vec4<f32>(v.normal, 0.0)).xyz);
@@ -192,16 +208,29 @@ fn light_visibility(world: vec3<f32>, normal: vec3<f32>) -> f32 {
 
 // --- passes ----------------------------------------------------------------
 
-// What the opaque passes write: the lit colour, and for the contact
-// occlusion (occlusion.wgsl) the surface's normal and its distance from the
-// eye.
+// What the opaque passes write: the lit colour, for the contact occlusion
+// (occlusion.wgsl) the surface's normal and its distance from the eye, and
+// for the temporal path its motion (a target only that path has).
 struct SceneFragment {
     @location(0) color: vec4<f32>,
     @location(1) geometry: vec4<f32>,
+    @location(2) motion: vec2<f32>,
 };
 
 fn geometry_of(world: vec3<f32>, n: vec3<f32>) -> vec4<f32> {
     return vec4<f32>(n, distance(world, globals.camera_pos.xyz));
+}
+
+fn screen_uv(view_proj: mat4x4<f32>, point: vec3<f32>) -> vec2<f32> {
+    let clip = view_proj * vec4<f32>(point, 1.0);
+    return clip.xy / clip.w * vec2<f32>(0.5, -0.5);
+}
+
+// How far on screen (in uv, from the top left) a surface point at `world`
+// that was at `previous` the frame before has moved back: where to find it
+// in the last frame is its uv plus this.
+fn motion_of(world: vec3<f32>, previous: vec3<f32>) -> vec2<f32> {
+    return screen_uv(globals.previous_view_proj, previous) - screen_uv(globals.motion_view_proj, world);
 }
 
 @fragment
@@ -218,7 +247,7 @@ fn fs_lit(in: VertexOut) -> SceneFragment {
         base = plaster(base, in.world);
     }
     let n = normalize(in.normal);
-    return SceneFragment(vec4<f32>(blinn_phong(base, in.world, n, in.material), 1.0), geometry_of(in.world, n));
+    return SceneFragment(vec4<f32>(blinn_phong(base, in.world, n, in.material), 1.0), geometry_of(in.world, n), motion_of(in.world, in.previous));
 }
 
 // Diffuse and specular light from a point light at `position` of `color`
@@ -324,6 +353,13 @@ struct BallOut {
     @location(0) world: vec3<f32>,
     @location(1) @interpolate(flat) sphere: vec4<f32>,
     @location(2) @interpolate(flat) color: vec3<f32>,
+    // The centre the frame before (the eye's view only).
+    @location(3) @interpolate(flat) previous_centre: vec3<f32>,
+};
+
+// A ball's sphere the frame before, for its motion.
+struct BallBefore {
+    @location(5) sphere: vec4<f32>,
 };
 
 // Corner `corner` (each coordinate -1 or 1) of the square, square to the
@@ -402,12 +438,15 @@ fn ball_square(v: VertexIn, ball: BallIn, eye: vec3<f32>, view_proj: mat4x4<f32>
     out.world = world;
     out.sphere = ball.sphere;
     out.color = ball.color;
+    out.previous_centre = ball.sphere.xyz;
     return out;
 }
 
 @vertex
-fn vs_ball(v: VertexIn, ball: BallIn) -> BallOut {
-    return ball_square(v, ball, globals.camera_pos.xyz, globals.view_proj);
+fn vs_ball(v: VertexIn, ball: BallIn, before: BallBefore) -> BallOut {
+    var out = ball_square(v, ball, globals.camera_pos.xyz, globals.view_proj);
+    out.previous_centre = before.sphere.xyz;
+    return out;
 }
 
 // With multisampling, a fragment on the outline covers the share of its
@@ -418,6 +457,7 @@ override ALPHA_TO_COVERAGE: bool = true;
 struct BallFragment {
     @location(0) color: vec4<f32>,
     @location(1) geometry: vec4<f32>,
+    @location(2) motion: vec2<f32>,
     @builtin(frag_depth) depth: f32,
 };
 
@@ -435,6 +475,8 @@ fn fs_ball(in: BallOut) -> BallFragment {
     let material = vec4<f32>(BALL_KIND, BALL_SPECULAR, BALL_SHININESS, 0.0);
     out.color = vec4<f32>(blinn_phong(in.color, hit.point, n, material), coverage);
     out.geometry = geometry_of(hit.point, n);
+    // The ball moves as a whole: its spin does not show on its one colour.
+    out.motion = motion_of(hit.point, hit.point - in.sphere.xyz + in.previous_centre);
     out.depth = ball_depth(globals.view_proj, hit.point, in.clip.z);
     return out;
 }
@@ -442,7 +484,7 @@ fn fs_ball(in: BallOut) -> BallFragment {
 // Unlit and glowing: the light's bulb (and, with it, anything emissive).
 @fragment
 fn fs_emissive(in: VertexOut) -> SceneFragment {
-    return SceneFragment(vec4<f32>(in.color.rgb * in.material.w, 1.0), geometry_of(in.world, normalize(in.normal)));
+    return SceneFragment(vec4<f32>(in.color.rgb * in.material.w, 1.0), geometry_of(in.world, normalize(in.normal)), motion_of(in.world, in.previous));
 }
 
 // Glowing and see-through, unlit, in premultiplied alpha: rgb is the light

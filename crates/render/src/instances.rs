@@ -111,6 +111,69 @@ impl BallInstance {
     }
 }
 
+impl BallInstance {
+    /// A ball's sphere the frame before, read from the same layout (see
+    /// `BallBefore` in scene.wgsl): the last frame's instances, or the GPU
+    /// engine's buffer copied at the end of the last frame.
+    const BEFORE: [wgpu::VertexAttribute; 1] = wgpu::vertex_attr_array![5 => Float32x4];
+
+    pub fn before_layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<BallInstance>() as u64,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &Self::BEFORE,
+        }
+    }
+}
+
+/// An object's model matrix the frame before (see `PreviousIn` in
+/// scene.wgsl), one for each [`Instance`] of the frame, for its motion.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct PreviousModel([[f32; 4]; 4]);
+
+impl PreviousModel {
+    const ATTRIBUTES: [wgpu::VertexAttribute; 4] = wgpu::vertex_attr_array![
+        9 => Float32x4, 10 => Float32x4, 11 => Float32x4, 12 => Float32x4
+    ];
+
+    pub fn layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<PreviousModel>() as u64,
+            step_mode: wgpu::VertexStepMode::Instance,
+            attributes: &Self::ATTRIBUTES,
+        }
+    }
+}
+
+/// Fills `list` with where each of this frame's `current` instances (laid
+/// out as `ranges`) was the frame before, from that frame's `last` laid
+/// out as `last_ranges`. The room, the tumblers and the lamps keep their
+/// places in the list from frame to frame; one new this frame (a fireball's
+/// heart) has not moved. The see-through particles write no motion (what
+/// shows through them moves as itself), and keep their own.
+pub fn fill_previous(
+    list: &mut Vec<PreviousModel>,
+    current: &[Instance],
+    ranges: &Ranges,
+    last: &[Instance],
+    last_ranges: &Ranges,
+) {
+    list.clear();
+    list.extend(current.iter().map(|i| PreviousModel(i.model)));
+    for (now, before) in [
+        (&ranges.room, &last_ranges.room),
+        (&ranges.tumblers, &last_ranges.tumblers),
+        (&ranges.lamps, &last_ranges.lamps),
+    ] {
+        let now = now.start as usize..now.end as usize;
+        let before = before.start as usize..before.end as usize;
+        for (slot, was) in list[now].iter_mut().zip(&last[before]) {
+            slot.0 = was.model;
+        }
+    }
+}
+
 /// The one material of every ball: glossy and sharp-highlighted.
 pub const BALL_MATERIAL: (Kind, Finish) = (Kind::Glossy, BALL_FINISH);
 
@@ -153,7 +216,7 @@ impl<T: Pod> InstanceBuffer<T> {
 
 /// Where each kind of object sits in the instance buffer this frame (the
 /// balls have a buffer of their own).
-#[derive(Default)]
+#[derive(Clone, Debug, Default)]
 pub struct Ranges {
     pub room: std::ops::Range<u32>,
     pub tumblers: std::ops::Range<u32>,

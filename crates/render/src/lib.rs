@@ -25,6 +25,7 @@ mod room;
 mod scale;
 mod shadow;
 mod snapshot;
+mod temporal;
 mod tumbler_mesh;
 mod view;
 
@@ -44,6 +45,9 @@ pub use renderer::{FrameStats, PassTimes, RenderSettings, Renderer, StampSlots};
 pub use room::{Surface, surfaces as room_surfaces};
 pub use scale::{DynamicScale, MAX_SCALE, MIN_SCALE};
 pub use snapshot::Snapshot;
+pub use temporal::{
+    HISTORY_FRAMES, JITTER_PHASES, SAMPLE_SPREAD, halton, jitter, jittered, sample_offset,
+};
 pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
 pub use view::{
     BallView, Bloom, CEILING_FALLOFF, GpuBallBuffer, Light, LightConfig, ParticleView, PointLight,

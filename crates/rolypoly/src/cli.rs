@@ -50,6 +50,11 @@ impl WindowArgs {
             fullscreen: self.fullscreen,
             vsync: !self.no_vsync,
             msaa: self.msaa,
+            temporal: match (self.temporal, self.no_temporal) {
+                (true, _) => Some(true),
+                (_, true) => Some(false),
+                _ => None,
+            },
             quality: self.quality,
             log_events: self.log_events,
             seed,
@@ -121,6 +126,18 @@ pub struct WindowArgs {
     /// 1 (off) (default: the level's own).
     #[arg(long = "window-msaa", value_name = "N", value_parser = parse_msaa, help_heading = WINDOW_HEADING)]
     pub msaa: Option<u32>,
+
+    /// Temporal anti-aliasing with upsampling in the window: frames
+    /// jittered and resolved against the ones before them at the window's
+    /// resolution, in place of multisampling (default: on with a GPU; off
+    /// on a software renderer, where its two passes at the window's
+    /// resolution cost more than the frame rate allows).
+    #[arg(long, conflicts_with = "no_temporal", help_heading = WINDOW_HEADING)]
+    pub temporal: bool,
+
+    /// Draw the window without temporal anti-aliasing, whatever the adapter.
+    #[arg(long, help_heading = WINDOW_HEADING)]
+    pub no_temporal: bool,
 
     /// Print every change of state (keys, modes, grabs, screenshots) as one
     /// JSON object per line on standard output.
@@ -203,6 +220,8 @@ impl FrameArgs {
             shadow_taps: self.shadow_taps,
             tumbler_obj: self.tumbler_obj.clone(),
             show: self.show,
+            scale: self.scale,
+            temporal: self.temporal,
         }
     }
 
@@ -472,6 +491,19 @@ pub struct FrameArgs {
     #[arg(long, value_name = "N", value_parser = parse_msaa)]
     pub msaa: Option<u32>,
 
+    /// Light the scene at this share of the frame's width and height,
+    /// 0.33 ..= 1, and spread it over the frame (default: the quality
+    /// level's).
+    #[arg(long, value_name = "S", value_parser = parse_scale)]
+    pub scale: Option<f32>,
+
+    /// Temporal anti-aliasing with upsampling: each frame jittered and
+    /// resolved against the frames before it at the frame's resolution.
+    /// `render` draws the 16 moments before its own first, 1/60 s apart.
+    /// It takes the place of multisampling.
+    #[arg(long, conflicts_with = "msaa")]
+    pub temporal: bool,
+
     /// Camera position and the point it looks at: EX,EY,EZ,TX,TY,TZ in metres
     /// (default: the whole room from outside its front wall).
     #[arg(long, value_name = "EYE,TARGET", value_parser = parse_camera, allow_hyphen_values = true)]
@@ -524,6 +556,18 @@ pub struct MakeTumblerObjArgs {
 /// Debug views by name, comma-separated.
 fn parse_show(text: &str) -> Result<DebugViews, String> {
     DebugViews::parse(text)
+}
+
+/// A render scale: a share of each side, from the least the window
+/// lowers it to up to the whole.
+fn parse_scale(text: &str) -> Result<f32, String> {
+    let (least, most) = (rolypoly_render::MIN_SCALE, rolypoly_render::MAX_SCALE);
+    match text.parse::<f32>() {
+        Ok(scale) if (least..=most).contains(&scale) => Ok(scale),
+        _ => Err(format!(
+            "`{text}` is not a render scale: give the share of each side the scene is lit at, {least} ..= {most}"
+        )),
+    }
 }
 
 /// A frame rate for the window to hold: more than 0, at most 1000.

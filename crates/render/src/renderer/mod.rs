@@ -9,7 +9,9 @@
 //! 4. the bloom's chain down and up ([`bloom`]);
 //! 5. [`Renderer::tonemap_pass`]: occlusion, glow and the filmic curve into
 //!    the output (lit at a lower resolution: at that resolution, then
-//!    spread over the output), and the drawn cursor over it.
+//!    spread over the output; on the temporal path, at that resolution,
+//!    then resolved against the history and sharpened, see [`taa`]), and
+//!    the debug marks and the drawn cursor over it.
 //!
 //! The parts, a file each: what the shaders read ([`bindings`]), how each
 //! kind of thing is drawn ([`pipelines`]), the targets a frame is drawn
@@ -17,11 +19,12 @@
 
 use crate::camera::Camera;
 use crate::gpu::{Gpu, RenderError};
-use crate::instances::{self, BallInstance, Instance, InstanceBuffer, Ranges};
+use crate::instances::{self, BallInstance, Instance, InstanceBuffer, PreviousModel, Ranges};
 use crate::irradiance::{DIRECTIONS, IrradianceVolume, MAX_PROBES};
 use crate::lighting;
 use crate::mesh::{GpuMesh, MeshData};
 use crate::shadow::{self, DrawnFaces, ShadowCube};
+use crate::temporal::{self, TemporalState};
 use crate::view::{PointLight, SceneView};
 use bindings::Layouts;
 use bloom::BloomPipelines;
@@ -32,6 +35,7 @@ use glam::UVec3;
 use occlusion::OcclusionPipeline;
 use pipelines::Pipelines;
 use std::time::{Duration, Instant};
+use taa::{History, ResolveInputs, TaaPipelines};
 use targets::{TargetKit, Targets};
 use timing::GpuTimer;
 pub use timing::PassTimes;
@@ -44,6 +48,7 @@ mod cursor;
 mod debug_marks;
 mod occlusion;
 mod pipelines;
+mod taa;
 mod targets;
 mod timing;
 
@@ -93,6 +98,11 @@ pub struct RenderSettings {
     /// where the adapter allows it. It changes no pixel; off only to measure
     /// what it saves.
     pub early_ball_depth: bool,
+    /// Temporal anti-aliasing with upsampling: each frame jittered, then
+    /// resolved against the frames before it at the output's resolution
+    /// (see [`crate::temporal`]). It takes the place of multisampling,
+    /// which it turns off.
+    pub temporal: bool,
 }
 
 impl Default for RenderSettings {
@@ -106,6 +116,7 @@ impl Default for RenderSettings {
             resolution: 1.0,
             exposure: 1.0,
             early_ball_depth: true,
+            temporal: false,
         }
     }
 }
@@ -150,6 +161,20 @@ struct Globals {
     fireball_falloff: [f32; 4],
     room: [f32; 4],
     irradiance_probes: [f32; 4],
+    motion_view_proj: [[f32; 4]; 4],
+    previous_view_proj: [[f32; 4]; 4],
+}
+
+/// The camera's view-projections this frame: the one it is drawn with
+/// (jittered on the temporal path), the one without jitter, and the last
+/// frame's without, for the surfaces' motion.
+struct Projections {
+    drawn: glam::Mat4,
+    unjittered: glam::Mat4,
+    previous: glam::Mat4,
+    /// Where this frame's sample lies in each lit pixel (none off the
+    /// temporal path).
+    sample_offset: glam::Vec2,
 }
 
 /// The light's falloff and its reach (0: none), as the shader reads them.
@@ -184,6 +209,16 @@ pub struct Renderer {
     tumbler: GpuMesh,
     instances: InstanceBuffer<Instance>,
     balls: InstanceBuffer<BallInstance>,
+    /// The last frame's balls, uploaded then: where each ball was.
+    previous_balls: InstanceBuffer<BallInstance>,
+    /// Where each instance was the frame before, and the last frame's
+    /// instances as they were laid out, to find it.
+    previous_models: InstanceBuffer<PreviousModel>,
+    last_instances: Vec<Instance>,
+    last_ranges: Ranges,
+    /// The GPU engine's balls as the last frame drew them (the temporal
+    /// path only): a copy made at the end of each frame.
+    previous_gpu_balls: Option<crate::view::GpuBallBuffer>,
     /// This frame's balls where the GPU engine wrote them (see
     /// [`crate::view::GpuBallBuffer`]); the frame then draws from it.
     gpu_balls: Option<crate::view::GpuBallBuffer>,
@@ -200,6 +235,11 @@ pub struct Renderer {
     /// The tumbler mesh's bounding sphere, in its own space.
     tumbler_bounds: (glam::Vec3, f32),
     targets: Option<Targets>,
+    /// The temporal path's passes, its history at the output's resolution,
+    /// and what it carries between frames.
+    taa: TaaPipelines,
+    history: Option<History>,
+    temporal: TemporalState,
     /// Times the passes on the GPU, where it can, once timing is asked for.
     timer: Option<GpuTimer>,
     /// Whether the passes are timed (the profiler is open).
@@ -224,7 +264,12 @@ impl Renderer {
     ) -> Renderer {
         let device = &gpu.device;
         let settings = RenderSettings {
-            msaa: gpu.msaa_samples(settings.msaa),
+            // The temporal path anti-aliases over frames instead.
+            msaa: if settings.temporal {
+                1
+            } else {
+                gpu.msaa_samples(settings.msaa)
+            },
             early_ball_depth: settings.early_ball_depth && gpu.has_early_depth_test(),
             // A share of the output: some of it, and never more.
             resolution: settings.resolution.clamp(0.05, 1.0),
@@ -284,6 +329,11 @@ impl Renderer {
             tumbler: GpuMesh::upload(device, "tumbler", tumbler_mesh),
             instances: InstanceBuffer::new(device, "instances"),
             balls: InstanceBuffer::new(device, "balls"),
+            previous_balls: InstanceBuffer::new(device, "balls before"),
+            previous_models: InstanceBuffer::new(device, "models before"),
+            last_instances: Vec::new(),
+            last_ranges: Ranges::default(),
+            previous_gpu_balls: None,
             gpu_balls: None,
             shadow_balls: InstanceBuffer::new(device, "shadow balls"),
             shadow_tumblers: InstanceBuffer::new(device, "shadow tumblers"),
@@ -292,6 +342,9 @@ impl Renderer {
             drawn_faces: DrawnFaces::default(),
             tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
+            taa: TaaPipelines::new(device, output_format),
+            history: None,
+            temporal: TemporalState::default(),
             timer: None,
             timing: false,
         }
@@ -355,12 +408,24 @@ impl Renderer {
         let gpu_times = self.timer.as_mut().and_then(|t| t.collect(&gpu.device));
         let timed = self.timing && self.timer.as_ref().is_some_and(GpuTimer::free);
         self.ensure_targets(gpu, width, height);
+        std::mem::swap(&mut self.instances.items, &mut self.last_instances);
         let ranges = instances::fill_scene(&mut self.instances.items, view);
+        instances::fill_previous(
+            &mut self.previous_models.items,
+            &self.instances.items,
+            &ranges,
+            &self.last_instances,
+            &self.last_ranges,
+        );
+        self.last_ranges = ranges.clone();
         self.instances.upload(gpu);
+        self.previous_models.upload(gpu);
         self.gpu_balls = view.gpu_balls.clone();
         if self.gpu_balls.is_some() {
             self.balls.items.clear();
         } else {
+            // Last frame's balls, already uploaded, become where they were.
+            std::mem::swap(&mut self.balls, &mut self.previous_balls);
             instances::fill_balls(&mut self.balls.items, view);
             self.balls.upload(gpu);
         }
@@ -378,7 +443,12 @@ impl Renderer {
         } else {
             UVec3::ZERO
         };
-        let globals = self.globals(view, camera, width as f32 / height as f32, probes);
+        let scene_size = self
+            .targets
+            .as_ref()
+            .map_or((width, height), |t| t.scene_size);
+        let projections = self.projections(camera, (width, height), scene_size);
+        let globals = self.globals(view, camera, &projections, probes);
         gpu.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
 
@@ -400,10 +470,6 @@ impl Renderer {
             draw_calls += calls;
             shadow_faces = faces;
         }
-        let scene_size = self
-            .targets
-            .as_ref()
-            .map_or((width, height), |t| t.scene_size);
         self.marks
             .upload(gpu, &view.debug_marks, camera, (width, height), scene_size);
         let targets = self
@@ -433,7 +499,16 @@ impl Renderer {
         ];
         gpu.queue
             .write_buffer(&self.tonemap_params, 0, bytemuck::cast_slice(&params));
-        draw_calls += self.tonemap_pass(&gpu.queue, &mut encoder, targets, output, timed);
+        let mut history = self.history.take();
+        let resolve = history.as_mut().map(|h| (h, projections.sample_offset));
+        draw_calls += self.tonemap_pass(gpu, &mut encoder, targets, output, resolve, timed);
+        targets.keep_geometry(&mut encoder);
+        self.history = history;
+        self.keep_gpu_balls(gpu, &mut encoder);
+        if self.settings.temporal {
+            self.temporal.previous_view_proj = Some(projections.unjittered);
+            self.temporal.frame += 1;
+        }
         let mut stamps = StampSlots::default();
         if timed && let Some(timer) = &mut self.timer {
             stamps = timer.resolve(&mut encoder);
@@ -456,15 +531,86 @@ impl Renderer {
         })
     }
 
-    /// The scene shader's globals for `view` seen by `camera`, with the
-    /// irradiance volume's `probes` along each axis (none: no bounce).
-    fn globals(&self, view: &SceneView, camera: &Camera, aspect: f32, probes: UVec3) -> Globals {
+    /// Forgets the frames the temporal path has gathered: the next frame
+    /// starts its history afresh (after a cut, where nothing of the last
+    /// picture belongs in the next).
+    pub fn forget_history(&mut self) {
+        if let Some(history) = &mut self.history {
+            history.forget();
+        }
+        self.temporal.previous_view_proj = None;
+    }
+
+    /// `camera`'s view-projections this frame, for an output of `size` lit
+    /// at `scene_size`: jittered on the temporal path.
+    fn projections(
+        &self,
+        camera: &Camera,
+        size: (u32, u32),
+        scene_size: (u32, u32),
+    ) -> Projections {
+        let unjittered = camera.view_projection(size.0 as f32 / size.1 as f32);
+        if !self.settings.temporal {
+            return Projections {
+                drawn: unjittered,
+                unjittered,
+                previous: unjittered,
+                sample_offset: glam::Vec2::ZERO,
+            };
+        }
+        let lit = glam::UVec2::new(scene_size.0, scene_size.1).as_vec2();
+        let out = glam::UVec2::new(size.0, size.1).as_vec2();
+        let offset = temporal::sample_offset(self.temporal.frame, lit, out);
+        Projections {
+            drawn: temporal::jittered(unjittered, offset, lit),
+            unjittered,
+            previous: self.temporal.previous_view_proj.unwrap_or(unjittered),
+            sample_offset: offset,
+        }
+    }
+
+    /// On the temporal path, copies the GPU engine's balls as this frame
+    /// drew them, for the next frame's motion.
+    fn keep_gpu_balls(&mut self, gpu: &Gpu, encoder: &mut wgpu::CommandEncoder) {
+        let Some(now) = self.gpu_balls.as_ref().filter(|_| self.settings.temporal) else {
+            return;
+        };
+        let bytes = u64::from(now.count) * std::mem::size_of::<BallInstance>() as u64;
+        if bytes == 0 {
+            return;
+        }
+        let kept = match self.previous_gpu_balls.take() {
+            Some(kept) if kept.buffer.size() >= bytes => kept.buffer,
+            _ => gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("gpu balls before"),
+                size: bytes,
+                usage: wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+        };
+        encoder.copy_buffer_to_buffer(&now.buffer, 0, &kept, 0, bytes);
+        self.previous_gpu_balls = Some(crate::view::GpuBallBuffer {
+            buffer: kept,
+            count: now.count,
+        });
+    }
+
+    /// The scene shader's globals for `view` seen by `camera` through
+    /// `projections`, with the irradiance volume's `probes` along each axis
+    /// (none: no bounce).
+    fn globals(
+        &self,
+        view: &SceneView,
+        camera: &Camera,
+        projections: &Projections,
+        probes: UVec3,
+    ) -> Globals {
         let light = &view.light;
         let ceiling = light.point();
         let fireball = view.fireball_light.filter(|_| light.fireball_light);
         let half = view.room_size * glam::Vec3::new(0.5, 1.0, 0.5);
         Globals {
-            view_proj: camera.view_projection(aspect).to_cols_array_2d(),
+            view_proj: projections.drawn.to_cols_array_2d(),
             camera_pos: camera.eye.extend(1.0).to_array(),
             light_pos: light.position.extend(1.0).to_array(),
             light_color: light.color.extend(light.ambient).to_array(),
@@ -482,6 +628,8 @@ impl Renderer {
             fireball_falloff: fireball.map_or([1.0, 0.0, 0.0, 0.0], falloff),
             room: half.extend(flag(light.indirect)).to_array(),
             irradiance_probes: probes.as_vec3().extend(MAX_PROBES as f32).to_array(),
+            motion_view_proj: projections.unjittered.to_cols_array_2d(),
+            previous_view_proj: projections.previous.to_cols_array_2d(),
         }
     }
 
@@ -491,6 +639,22 @@ impl Renderer {
         match &self.gpu_balls {
             Some(gpu) => (&gpu.buffer, 0..gpu.count),
             None => (&self.balls.buffer, self.balls.range()),
+        }
+    }
+
+    /// Where this frame's balls were the frame before: the last frame's,
+    /// where they were as many; else where they are (no motion).
+    fn balls_before(&self) -> &wgpu::Buffer {
+        match &self.gpu_balls {
+            Some(now) => self
+                .previous_gpu_balls
+                .as_ref()
+                .filter(|before| before.count == now.count)
+                .map_or(&now.buffer, |before| &before.buffer),
+            None if self.previous_balls.items.len() == self.balls.items.len() => {
+                &self.previous_balls.buffer
+            }
+            None => &self.balls.buffer,
         }
     }
 
@@ -614,17 +778,22 @@ impl Renderer {
         ranges: &Ranges,
         timed: bool,
     ) -> u32 {
+        let mut attachments = vec![
+            attachment(&targets.hdr, targets.msaa.as_ref(), BACKGROUND),
+            // Distance 0: nothing there.
+            attachment(
+                &targets.geometry,
+                targets.geometry_msaa.as_ref(),
+                wgpu::Color::TRANSPARENT,
+            ),
+        ];
+        if let Some(motion) = &targets.motion {
+            // No motion where nothing is drawn.
+            attachments.push(attachment(motion, None, wgpu::Color::TRANSPARENT));
+        }
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("scene"),
-            color_attachments: &[
-                attachment(&targets.hdr, targets.msaa.as_ref(), BACKGROUND),
-                // Distance 0: nothing there.
-                attachment(
-                    &targets.geometry,
-                    targets.geometry_msaa.as_ref(),
-                    wgpu::Color::TRANSPARENT,
-                ),
-            ],
+            color_attachments: &attachments,
             depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth,
                 depth_ops: Some(wgpu::Operations {
@@ -645,14 +814,17 @@ impl Renderer {
         // Lit and opaque first (the balls from their own buffer) ...
         let mut draw_calls = 0;
         pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
+        pass.set_vertex_buffer(2, self.previous_models.buffer.slice(..));
         pass.set_pipeline(&self.pipelines.lit);
         draw_calls += draw(&mut pass, &self.quad, ranges.room.clone());
         draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
         let (balls, ball_range) = self.ball_source();
         pass.set_vertex_buffer(1, balls.slice(..));
+        pass.set_vertex_buffer(2, self.balls_before().slice(..));
         pass.set_pipeline(&self.pipelines.ball);
         draw_calls += draw(&mut pass, &self.quad, ball_range);
         pass.set_vertex_buffer(1, self.instances.buffer.slice(..));
+        pass.set_vertex_buffer(2, self.previous_models.buffer.slice(..));
         // ... then what glows and is not lit (the bulb, the fireball's heart) ...
         pass.set_pipeline(&self.pipelines.emissive);
         draw_calls += draw(&mut pass, &self.sphere, ranges.lamps.clone());
@@ -673,12 +845,16 @@ impl Renderer {
     /// resolution and then spread over the output with one bilinear read a
     /// pixel: tone mapping reads seven texels a pixel, which at the
     /// output's resolution cost a software renderer more than the scene.
+    /// On the temporal path, the frame tone-mapped at the lit resolution is
+    /// resolved into the `history` with this frame's sample offset, and
+    /// sharpened into the output.
     fn tonemap_pass(
         &self,
-        queue: &wgpu::Queue,
+        gpu: &Gpu,
         encoder: &mut wgpu::CommandEncoder,
         targets: &Targets,
         output: &wgpu::TextureView,
+        history: Option<(&mut History, glam::Vec2)>,
         timed: bool,
     ) -> u32 {
         let stamps = |start: Option<u32>, end: Option<u32>| {
@@ -688,6 +864,7 @@ impl Renderer {
                 .map(|t| t.writes(start, end))
         };
         let mut draw_calls = 0;
+        let sharpen;
         let (last, last_stamps) = match &targets.composed {
             Some((composed, upscale)) => {
                 let mut pass = screen_pass(encoder, composed, stamps(Some(4), None));
@@ -696,7 +873,29 @@ impl Renderer {
                 pass.draw(0..3, 0..1);
                 drop(pass);
                 draw_calls += 1;
-                ((&self.pipelines.upscale, upscale), stamps(None, Some(5)))
+                match (history, &targets.motion, &targets.geometry_before) {
+                    (Some((history, sample_offset)), Some(motion), Some((_, geometry_before))) => {
+                        let inputs = ResolveInputs {
+                            composed,
+                            motion,
+                            geometry: &targets.geometry,
+                            geometry_before,
+                            sampler: &self.smooth_sampler,
+                            sample_offset,
+                        };
+                        sharpen = self.taa.resolve(
+                            &gpu.device,
+                            &gpu.queue,
+                            encoder,
+                            history,
+                            &inputs,
+                            None,
+                        );
+                        draw_calls += 1;
+                        ((&self.taa.sharpen, &sharpen), stamps(None, Some(5)))
+                    }
+                    _ => ((&self.pipelines.upscale, upscale), stamps(None, Some(5))),
+                }
             }
             None => (
                 (&self.pipelines.tonemap, &targets.tonemap_bind_group),
@@ -713,10 +912,19 @@ impl Renderer {
             + self.marks.draw(&mut pass, &targets.marks_bind_group)
             + self
                 .cursor
-                .draw(queue, &mut pass, targets.width, targets.height)
+                .draw(&gpu.queue, &mut pass, targets.width, targets.height)
     }
 
     fn ensure_targets(&mut self, gpu: &Gpu, width: u32, height: u32) {
+        // The history is the output's: a new scale keeps it.
+        if self.settings.temporal
+            && self
+                .history
+                .as_ref()
+                .is_none_or(|h| h.size() != (width, height))
+        {
+            self.history = Some(History::new(&gpu.device, (width, height)));
+        }
         if self
             .targets
             .as_ref()
@@ -730,6 +938,7 @@ impl Renderer {
         let scene_size = (scaled(width), scaled(height));
         let kit = TargetKit {
             samples: self.settings.msaa,
+            temporal: self.settings.temporal,
             tonemap_layout: &self.tonemap_layout,
             upscale_layout: &self.upscale_layout,
             output_format: self.output_format,
@@ -805,7 +1014,7 @@ impl Irradiance {
 }
 
 /// A pass over the whole of `target`, cleared first.
-fn screen_pass<'a>(
+pub(super) fn screen_pass<'a>(
     encoder: &'a mut wgpu::CommandEncoder,
     target: &'a wgpu::TextureView,
     timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'a>>,

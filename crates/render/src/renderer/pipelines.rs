@@ -2,8 +2,9 @@
 //! target, with which shader entry points, blending and depth.
 
 use super::bindings::Layouts;
+use super::taa::MOTION_FORMAT;
 use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT, RenderSettings};
-use crate::instances::{BALL_MATERIAL, BallInstance, Instance};
+use crate::instances::{BALL_MATERIAL, BallInstance, Instance, PreviousModel};
 use crate::mesh::Vertex;
 use crate::shadow;
 
@@ -55,6 +56,12 @@ impl Pipelines {
                 immediate_size: 0,
             });
         let buffers = [Some(Vertex::layout()), Some(Instance::layout())];
+        let scene_buffers = [
+            Some(Vertex::layout()),
+            Some(Instance::layout()),
+            Some(PreviousModel::layout()),
+        ];
+        let temporal = settings.temporal;
         let shadow_taps = ("SHADOW_TAPS", f64::from(settings.shadow_taps));
         let scene_constants = [shadow_taps];
         // Opaque passes write depth; see-through ones blend and only test it.
@@ -66,7 +73,7 @@ impl Pipelines {
                     module: &shader,
                     entry_point: Some("vs_scene"),
                     compilation_options: Default::default(),
-                    buffers: &buffers,
+                    buffers: &scene_buffers,
                 },
                 primitive: wgpu::PrimitiveState {
                     cull_mode: Some(wgpu::Face::Back),
@@ -90,7 +97,7 @@ impl Pipelines {
                         constants: &scene_constants,
                         ..Default::default()
                     },
-                    targets: &scene_targets(blend),
+                    targets: &scene_targets(blend, temporal),
                 }),
                 multiview_mask: None,
                 cache: None,
@@ -111,6 +118,11 @@ impl Pipelines {
             shadow_taps,
         ];
         let ball_buffers = [Some(Vertex::layout()), Some(BallInstance::layout())];
+        let ball_scene_buffers = [
+            Some(Vertex::layout()),
+            Some(BallInstance::layout()),
+            Some(BallInstance::before_layout()),
+        ];
         let ball_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("balls"),
             layout: Some(&scene_pipeline_layout),
@@ -118,7 +130,7 @@ impl Pipelines {
                 module: &shader,
                 entry_point: Some("vs_ball"),
                 compilation_options: Default::default(),
-                buffers: &ball_buffers,
+                buffers: &ball_scene_buffers,
             },
             primitive: wgpu::PrimitiveState::default(),
             depth_stencil: Some(wgpu::DepthStencilState {
@@ -140,7 +152,7 @@ impl Pipelines {
                     constants: &ball_constants,
                     ..Default::default()
                 },
-                targets: &scene_targets(None),
+                targets: &scene_targets(None, temporal),
             }),
             multiview_mask: None,
             cache: None,
@@ -253,26 +265,37 @@ impl Pipelines {
     }
 }
 
-/// The scene pass's two targets: the HDR colour, and the surface's normal
-/// and distance for the occlusion, which only opaque things (no `blend`)
-/// write: see-through particles leave the surface behind them there.
-fn scene_targets(blend: Option<wgpu::BlendState>) -> [Option<wgpu::ColorTargetState>; 2] {
-    [
+/// The scene pass's targets: the HDR colour, the surface's normal and
+/// distance for the occlusion and, on the `temporal` path, its motion.
+/// Only opaque things (no `blend`) write the last two: see-through
+/// particles leave the surface behind them there.
+fn scene_targets(
+    blend: Option<wgpu::BlendState>,
+    temporal: bool,
+) -> Vec<Option<wgpu::ColorTargetState>> {
+    let surface = |format| {
         Some(wgpu::ColorTargetState {
-            format: HDR_FORMAT,
-            blend,
-            write_mask: wgpu::ColorWrites::ALL,
-        }),
-        Some(wgpu::ColorTargetState {
-            format: GEOMETRY_FORMAT,
+            format,
             blend: None,
             write_mask: if blend.is_some() {
                 wgpu::ColorWrites::empty()
             } else {
                 wgpu::ColorWrites::ALL
             },
+        })
+    };
+    let mut targets = vec![
+        Some(wgpu::ColorTargetState {
+            format: HDR_FORMAT,
+            blend,
+            write_mask: wgpu::ColorWrites::ALL,
         }),
-    ]
+        surface(GEOMETRY_FORMAT),
+    ];
+    if temporal {
+        targets.push(surface(MOTION_FORMAT));
+    }
+    targets
 }
 
 /// The shader of a pass over whole images: `source` after the shared

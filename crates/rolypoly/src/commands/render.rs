@@ -48,9 +48,8 @@ pub fn render(
     if gpu {
         frames.move_balls_to_gpu(sim)?;
     }
-    sim.ticks(steps_for(args.time, sim.world.config().solver.dt));
-    sim.check_gpu()?;
-    let image = frames.draw(sim, light)?;
+    let steps = steps_for(args.time, sim.world.config().solver.dt);
+    let image = frames.draw_at(sim, steps, light)?;
     save(&image, &args.out)?;
     let (width, height) = args.size;
     println!(
@@ -70,7 +69,7 @@ pub fn render(
     Ok(())
 }
 
-/// Scores `picture` against `reference`: FLIP's map beside `out`, its mean
+/// Scores `picture` against `reference`: FLIP's map beside `out`, its mean and the SSIM
 /// printed.
 fn measure(
     reference: &image::RgbaImage,
@@ -84,6 +83,10 @@ fn measure(
     println!(
         "mean FLIP error against the reference: {:.4}",
         comparison.mean
+    );
+    println!(
+        "SSIM against the reference: {:.4}",
+        rolypoly_reference::ssim(reference, picture)
     );
     Ok(())
 }

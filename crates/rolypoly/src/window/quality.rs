@@ -28,18 +28,27 @@ pub struct WindowQuality {
     scale: DynamicScale,
     /// Multisamples at every level, where `--window-msaa` fixes them.
     msaa: Option<u32>,
+    /// Whether frames take the temporal path (in place of multisampling).
+    temporal: bool,
 }
 
 impl WindowQuality {
     /// The window's quality under `choice`, aiming at `target_fps` frames
-    /// a second under auto, with `msaa` samples at every level where given.
-    pub fn new(choice: QualityChoice, target_fps: f64, msaa: Option<u32>) -> WindowQuality {
+    /// a second under auto, with `msaa` samples at every level where given,
+    /// on the `temporal` path or not.
+    pub fn new(
+        choice: QualityChoice,
+        target_fps: f64,
+        msaa: Option<u32>,
+        temporal: bool,
+    ) -> WindowQuality {
         WindowQuality {
             choice,
             target_fps,
             auto: AutoQuality::new(target_fps),
             scale: DynamicScale::new(target_fps),
             msaa,
+            temporal,
         }
     }
 
@@ -60,12 +69,19 @@ impl WindowQuality {
         }
     }
 
+    /// Draws on the temporal path from now on, or not (the renderer is made
+    /// anew for it).
+    pub fn set_temporal(&mut self, temporal: bool) {
+        self.temporal = temporal;
+    }
+
     /// The renderer's settings now.
     pub fn settings(&self) -> RenderSettings {
         let level = self.level().settings();
         RenderSettings {
             msaa: self.msaa.unwrap_or(level.msaa),
             resolution: self.scale(),
+            temporal: self.temporal,
             ..level
         }
     }
@@ -83,7 +99,7 @@ impl WindowQuality {
     ) -> QualityChange {
         let (level, scale) = (self.level(), self.scale());
         if choice != self.choice || target_fps != self.target_fps {
-            *self = WindowQuality::new(choice, target_fps, self.msaa);
+            *self = WindowQuality::new(choice, target_fps, self.msaa, self.temporal);
         } else if choice == QualityChoice::Auto
             && !drawing.is_zero()
             && self.scale.observe(drawing).is_none()
@@ -103,10 +119,13 @@ impl WindowQuality {
 
     /// The level, the scale and why, for the HUD.
     pub fn describe(&self) -> String {
+        let temporal = if self.temporal { ", temporal" } else { "" };
         match self.choice {
-            QualityChoice::Fixed(level) => format!("quality {} (chosen)", level.name()),
+            QualityChoice::Fixed(level) => {
+                format!("quality {}{temporal} (chosen)", level.name())
+            }
             QualityChoice::Auto => format!(
-                "quality {}, scale {:.2} ({}; target {:.0} fps)",
+                "quality {}, scale {:.2}{temporal} ({}; target {:.0} fps)",
                 self.level().name(),
                 self.scale(),
                 self.auto.reason(),
@@ -123,7 +142,8 @@ mod tests {
 
     #[test]
     fn a_chosen_level_holds_however_slow_the_frames() {
-        let mut quality = WindowQuality::new(QualityChoice::Fixed(Quality::High), 30.0, None);
+        let mut quality =
+            WindowQuality::new(QualityChoice::Fixed(Quality::High), 30.0, None, false);
         for _ in 0..300 {
             assert_eq!(
                 quality.update(
@@ -140,7 +160,7 @@ mod tests {
 
     #[test]
     fn auto_lowers_the_scale_first_then_the_level_and_a_new_choice_takes_over() {
-        let mut quality = WindowQuality::new(QualityChoice::Auto, 30.0, Some(4));
+        let mut quality = WindowQuality::new(QualityChoice::Auto, 30.0, Some(4), false);
         let changes: Vec<QualityChange> = (0..600)
             .map(|_| quality.update(QualityChoice::Auto, 30.0, Duration::from_millis(200)))
             .filter(|&c| c != QualityChange::None)
@@ -195,7 +215,7 @@ mod tests {
     fn a_frame_that_keeps_up_only_at_a_lower_scale_keeps_the_level() {
         // 4 ms that do not scale and 60 ms that do: the scale keeps 30 a
         // second well above the least, and the level stays high.
-        let mut quality = WindowQuality::new(QualityChoice::Auto, 30.0, None);
+        let mut quality = WindowQuality::new(QualityChoice::Auto, 30.0, None, false);
         for _ in 0..600 {
             let s = f64::from(quality.scale());
             quality.update(

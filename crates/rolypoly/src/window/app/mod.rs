@@ -51,6 +51,10 @@ pub struct WindowOptions {
     pub vsync: bool,
     /// Multisamples at every quality level (4 or 1), or the level's own.
     pub msaa: Option<u32>,
+    /// Temporal anti-aliasing with upsampling (see
+    /// [`rolypoly_render::jitter`]) in place of multisampling, or None: on
+    /// with a GPU, off on a software renderer.
+    pub temporal: Option<bool>,
     /// The quality level the flag asks for, over the scene's.
     pub quality: Option<QualityChoice>,
     /// Print every change of state as a JSON line.
@@ -203,6 +207,7 @@ impl App {
                 sandbox.scene().quality,
                 chosen_fps(sandbox.scene().target_fps).unwrap_or(AUTO_TARGET_FPS),
                 options.msaa,
+                options.temporal.unwrap_or(false),
             ),
             sound: LiveSound::open(&sandbox.scene().sound, &sandbox.sim),
             last_simulation: Duration::ZERO,

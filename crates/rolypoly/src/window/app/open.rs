@@ -79,6 +79,12 @@ impl App {
             view_formats: vec![],
         };
         surface.configure(&gpu.device, &config);
+        // A software renderer cannot keep up with a display; a GPU aims at
+        // the display's rate (60 where the display does not say), and
+        // draws on the temporal path unless told otherwise.
+        let software = gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+        self.quality
+            .set_temporal(self.options.temporal.unwrap_or(!software));
         let renderer = Renderer::new(
             &gpu,
             self.quality.settings(),
@@ -105,11 +111,9 @@ impl App {
                 "seed": self.options.seed,
                 "engine": self.sandbox.scene().engine.name(),
                 "balls": self.sandbox.sim.ball_count(),
+                "temporal": renderer.settings().temporal,
             }),
         );
-        // A software renderer cannot keep up with a display; a GPU aims at
-        // the display's rate (60 where the display does not say).
-        let software = gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
         let display_fps = window
             .current_monitor()
             .and_then(|monitor| monitor.refresh_rate_millihertz())
