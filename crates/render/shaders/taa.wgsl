@@ -11,8 +11,10 @@
 // so far, so a pixel new to the screen settles fast and a settled one
 // moves slowly.
 //
-// `fs_sharpen` gives back what the accumulation's filter softens: an unsharp
-// mask on five texels, held within their own range so that it rings nowhere.
+// `fs_sharpen` gives back what the current frame spread over the output
+// softens where a pixel has little history (new to the screen, or near what
+// moves): an unsharp mask on five texels, as strong as the pixel is
+// unsettled, held within their own range so that it rings nowhere.
 
 // The frame tone-mapped at the lit resolution, and its motion.
 @group(0) @binding(0) var current: texture_2d<f32>;
@@ -59,6 +61,8 @@ const KERNEL: f32 = 16.0;
 // bound, so that a shadow moving over it does not linger.
 const STILL_CLIP_SPREAD: f32 = 8.0;
 const STILL_CLIP_FLOOR: f32 = 0.03;
+// The weight from which a pixel counts as settled and is not sharpened.
+const SETTLED_WEIGHT: f32 = 3.0;
 // How far from the neighbourhood's mean, in its standard deviations, the
 // history may stay: wider keeps more history (smoother), narrower ghosts
 // less.
@@ -198,13 +202,22 @@ fn fs_resolve(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
 fn fs_sharpen(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let p = vec2<i32>(position.xy);
     let last = vec2<i32>(textureDimensions(history)) - 1;
-    let c = textureLoad(history, p, 0).rgb;
+    let here = textureLoad(history, p, 0);
+    let c = here.rgb;
+    // Sharpened as much as it is soft: a pixel that has gathered few
+    // samples (new to the screen, or near what moves, where the current
+    // frame spread over it stands in) fully; a settled one, already as sharp
+    // as its samples, not at all.
+    let amount = params.values.w * clamp(1.0 - here.a / SETTLED_WEIGHT, 0.0, 1.0);
+    if amount <= 0.0 {
+        return vec4<f32>(c, 1.0);
+    }
     let n = textureLoad(history, clamp(p + vec2<i32>(0, -1), vec2<i32>(0), last), 0).rgb;
     let s = textureLoad(history, clamp(p + vec2<i32>(0, 1), vec2<i32>(0), last), 0).rgb;
     let e = textureLoad(history, clamp(p + vec2<i32>(1, 0), vec2<i32>(0), last), 0).rgb;
     let w = textureLoad(history, clamp(p + vec2<i32>(-1, 0), vec2<i32>(0), last), 0).rgb;
     let low = min(c, min(min(n, s), min(e, w)));
     let high = max(c, max(max(n, s), max(e, w)));
-    let sharpened = c + params.values.w * (4.0 * c - n - s - e - w);
+    let sharpened = c + amount * (4.0 * c - n - s - e - w);
     return vec4<f32>(clamp(sharpened, low, high), 1.0);
 }

@@ -48,7 +48,9 @@ pub use snapshot::Snapshot;
 pub use temporal::{
     HISTORY_FRAMES, JITTER_PHASES, SAMPLE_SPREAD, halton, jitter, jittered, sample_offset,
 };
-pub use tumbler_mesh::{DEFAULT_TUMBLER_OBJ, OBJ_HEADER, from_obj, mesh_for, to_obj, tumbler_mesh};
+pub use tumbler_mesh::{
+    DEFAULT_TUMBLER_OBJ, OBJ_HEADER, coarse_tumbler_mesh, from_obj, mesh_for, to_obj, tumbler_mesh,
+};
 pub use view::{
     BallView, Bloom, CEILING_FALLOFF, GpuBallBuffer, Light, LightConfig, ParticleView, PointLight,
     SceneView, TumblerView, particle_color,

@@ -13,7 +13,8 @@ use crate::renderer::RenderSettings;
 /// How finely a frame is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Quality {
-    /// Half the resolution, one sample per pixel, four shadow taps.
+    /// Half the resolution, one sample per pixel, four shadow taps, the
+    /// tumblers' coarse mesh where there is one.
     Low,
     /// Full resolution, one sample per pixel, four shadow taps.
     Medium,
@@ -49,6 +50,7 @@ impl Quality {
                 shadow_taps: 2,
                 shadow_size: 512,
                 resolution: 0.5,
+                coarse_tumblers: true,
                 ..high
             },
         }

@@ -51,6 +51,8 @@ impl Snapshot {
         tumbler_mesh: Option<MeshData>,
     ) -> Result<Snapshot, RenderError> {
         let spheres = &config.tumblers.spheres;
+        // A mesh of the user's own has no coarse level to draw.
+        let made_from_spheres = tumbler_mesh.is_none();
         let mesh = match tumbler_mesh {
             Some(mesh) => mesh,
             None => {
@@ -58,7 +60,10 @@ impl Snapshot {
             }
         };
         let paint = crate::paint::tumbler_paint(spheres);
-        let renderer = Renderer::new(&gpu, settings, OFFSCREEN_FORMAT, &mesh, &paint);
+        let mut renderer = Renderer::new(&gpu, settings, OFFSCREEN_FORMAT, &mesh, &paint);
+        if made_from_spheres {
+            renderer.set_coarse_tumbler(&gpu, &crate::tumbler_mesh::coarse_tumbler_mesh(spheres));
+        }
         let target = OffscreenTarget::new(&gpu, width, height)?;
         Ok(Snapshot {
             gpu,

@@ -14,6 +14,10 @@ use std::fmt::Write as _;
 /// Rings along the axis and segments around it.
 const RINGS: u32 = 96;
 const SEGMENTS: u32 = 64;
+/// The coarse mesh's (see [`coarse_tumbler_mesh`]): a ninth of the
+/// triangles.
+const COARSE_RINGS: u32 = 32;
+const COARSE_SEGMENTS: u32 = 24;
 
 /// The widest sphere at height `y`: its index and radius of the cut there.
 fn outline(spheres: &[SphereSpec], y: f64) -> (usize, f64) {
@@ -33,16 +37,31 @@ fn outline(spheres: &[SphereSpec], y: f64) -> (usize, f64) {
 
 /// Builds the surface of revolution of the spheres' union.
 pub fn tumbler_mesh(spheres: &[SphereSpec]) -> MeshData {
+    revolved(spheres, RINGS, SEGMENTS)
+}
+
+/// The same surface in far fewer triangles, for frames lit so small that a
+/// ring of the full mesh spans less than a pixel (the low quality level):
+/// its outline stays within a quarter of a pixel of the full mesh's there,
+/// and a software renderer draws five tumblers and their shadows in a
+/// fraction of the time.
+pub fn coarse_tumbler_mesh(spheres: &[SphereSpec]) -> MeshData {
+    revolved(spheres, COARSE_RINGS, COARSE_SEGMENTS)
+}
+
+/// The surface of revolution of the spheres' union, in `rings` along the
+/// axis and `segments` around it.
+fn revolved(spheres: &[SphereSpec], rings: u32, segments: u32) -> MeshData {
     let (lo, hi) = rolypoly_physics::axis_extent(spheres);
     let mut mesh = MeshData::default();
-    for r in 0..=RINGS {
+    for r in 0..=rings {
         // Top (v = 0) to bottom (v = 1); rings cluster near the poles.
-        let v = r as f64 / RINGS as f64;
+        let v = r as f64 / rings as f64;
         let y = hi - (hi - lo) * (0.5 - 0.5 * (std::f64::consts::PI * v).cos());
         let (owner, radius) = outline(spheres, y);
         let centre = Vec3::new(0.0, spheres[owner].height as f32, 0.0);
-        for s in 0..=SEGMENTS {
-            let u = s as f32 / SEGMENTS as f32;
+        for s in 0..=segments {
+            let u = s as f32 / segments as f32;
             let phi = u * std::f32::consts::TAU;
             let p = Vec3::new(
                 radius as f32 * phi.cos(),
@@ -59,7 +78,7 @@ pub fn tumbler_mesh(spheres: &[SphereSpec]) -> MeshData {
             });
         }
     }
-    mesh.grid_indices(RINGS, SEGMENTS);
+    mesh.grid_indices(rings, segments);
     mesh
 }
 
@@ -254,8 +273,10 @@ mod tests {
     #[test]
     fn mesh_surface_lies_on_the_collision_spheres() {
         let spheres = WorldConfig::default().tumblers.spheres;
-        let mesh = tumbler_mesh(&spheres);
-        for v in &mesh.vertices {
+        let (full, coarse) = (tumbler_mesh(&spheres), coarse_tumbler_mesh(&spheres));
+        // The coarse level is the same surface in a ninth of the triangles.
+        assert!(coarse.indices.len() * 8 <= full.indices.len());
+        for v in full.vertices.iter().chain(&coarse.vertices) {
             let p = Vec3::from_array(v.position).as_dvec3();
             // Inside or on every sphere's union, and on at least one surface.
             let nearest = spheres

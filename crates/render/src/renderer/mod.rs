@@ -103,6 +103,9 @@ pub struct RenderSettings {
     /// (see [`crate::temporal`]). It takes the place of multisampling,
     /// which it turns off.
     pub temporal: bool,
+    /// Draw the tumblers with their coarse mesh, where the renderer has one
+    /// (see [`Renderer::set_coarse_tumbler`]).
+    pub coarse_tumblers: bool,
 }
 
 impl Default for RenderSettings {
@@ -117,6 +120,7 @@ impl Default for RenderSettings {
             exposure: 1.0,
             early_ball_depth: true,
             temporal: false,
+            coarse_tumblers: false,
         }
     }
 }
@@ -207,6 +211,8 @@ pub struct Renderer {
     quad: GpuMesh,
     cube: GpuMesh,
     tumbler: GpuMesh,
+    /// The tumblers' coarse mesh, drawn in its place where the settings ask.
+    coarse_tumbler: Option<GpuMesh>,
     instances: InstanceBuffer<Instance>,
     balls: InstanceBuffer<BallInstance>,
     /// The last frame's balls, uploaded then: where each ball was.
@@ -327,6 +333,7 @@ impl Renderer {
             quad: GpuMesh::upload(device, "quad", &MeshData::quad()),
             cube: GpuMesh::upload(device, "cube", &MeshData::cube()),
             tumbler: GpuMesh::upload(device, "tumbler", tumbler_mesh),
+            coarse_tumbler: None,
             instances: InstanceBuffer::new(device, "instances"),
             balls: InstanceBuffer::new(device, "balls"),
             previous_balls: InstanceBuffer::new(device, "balls before"),
@@ -364,6 +371,20 @@ impl Renderer {
     /// frame's top left) in the frames that follow, or no cursor.
     pub fn set_cursor(&mut self, pixel: Option<glam::Vec2>) {
         self.cursor.at = pixel;
+    }
+
+    /// Gives the tumblers a coarse mesh to be drawn with where the settings
+    /// ask for it (see [`crate::coarse_tumbler_mesh`]).
+    pub fn set_coarse_tumbler(&mut self, gpu: &Gpu, mesh: &MeshData) {
+        self.coarse_tumbler = Some(GpuMesh::upload(&gpu.device, "coarse tumbler", mesh));
+    }
+
+    /// The tumbler mesh the frames draw.
+    fn tumbler_mesh(&self) -> &GpuMesh {
+        match &self.coarse_tumbler {
+            Some(coarse) if self.settings.coarse_tumblers => coarse,
+            _ => &self.tumbler,
+        }
     }
 
     /// How it draws now.
@@ -763,7 +784,7 @@ impl Renderer {
             pass.set_pipeline(&self.pipelines.shadow);
             let tumbler_range =
                 culled.map_or(ranges.tumblers.clone(), |c| c.tumblers[face].clone());
-            draw_calls += draw(&mut pass, &self.tumbler, tumbler_range);
+            draw_calls += draw(&mut pass, self.tumbler_mesh(), tumbler_range);
         }
         (draw_calls, stale.iter().filter(|&&s| s).count() as u32)
     }
@@ -817,7 +838,7 @@ impl Renderer {
         pass.set_vertex_buffer(2, self.previous_models.buffer.slice(..));
         pass.set_pipeline(&self.pipelines.lit);
         draw_calls += draw(&mut pass, &self.quad, ranges.room.clone());
-        draw_calls += draw(&mut pass, &self.tumbler, ranges.tumblers.clone());
+        draw_calls += draw(&mut pass, self.tumbler_mesh(), ranges.tumblers.clone());
         let (balls, ball_range) = self.ball_source();
         pass.set_vertex_buffer(1, balls.slice(..));
         pass.set_vertex_buffer(2, self.balls_before().slice(..));

@@ -10,9 +10,10 @@ pub(super) const HISTORY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba
 /// A surface's motion on screen since the last frame, in uv.
 pub(super) const MOTION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg16Float;
 
-/// How strongly the output is sharpened after the resolve: the unsharp
-/// mask's weight on the difference from its four neighbours.
-const SHARPNESS: f32 = 0.0;
+/// How strongly the output is sharpened after the resolve where a pixel
+/// has gathered little history: the unsharp mask's weight on the
+/// difference from its four neighbours (see `fs_sharpen`).
+const SHARPNESS: f32 = 0.25;
 
 /// The resolve and sharpening pipelines, over one layout.
 pub(super) struct TaaPipelines {

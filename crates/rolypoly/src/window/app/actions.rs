@@ -199,18 +199,14 @@ impl App {
             return;
         }
         match super::tumbler_look(spheres) {
-            Ok((mesh, paint)) => {
+            Ok((mesh, coarse, paint)) => {
                 self.tumbler_spheres = spheres.clone();
                 self.tumbler_mesh = mesh;
+                self.coarse_tumbler = coarse;
                 self.paint = paint;
-                if let Some(r) = self.running.as_mut() {
-                    r.renderer = rolypoly_render::Renderer::new(
-                        &r.gpu,
-                        r.renderer.settings(),
-                        r.config.format,
-                        &self.tumbler_mesh,
-                        &self.paint,
-                    );
+                if let Some(r) = self.running.take() {
+                    let renderer = self.renderer(&r.gpu, r.renderer.settings(), r.config.format);
+                    self.running = Some(super::Running { renderer, ..r });
                 }
             }
             Err(e) => self.tell(format!("cannot draw the new tumblers: {e:#}")),

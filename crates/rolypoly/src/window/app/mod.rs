@@ -146,9 +146,11 @@ struct App {
     sandbox: Sandbox,
     options: WindowOptions,
     log: EventLog,
-    /// The tumblers' shape the mesh was made for, the mesh and its paint.
+    /// The tumblers' shape the mesh was made for, the mesh, its coarse
+    /// level and its paint.
     tumbler_spheres: Vec<SphereSpec>,
     tumbler_mesh: MeshData,
+    coarse_tumbler: MeshData,
     paint: image::RgbaImage,
     panel: Panel,
     quality: WindowQuality,
@@ -193,7 +195,7 @@ impl App {
         let world = sandbox.world();
         let room = world.config().room.size.as_vec3();
         let tumbler_spheres = world.config().tumblers.spheres.clone();
-        let (tumbler_mesh, paint) = tumbler_look(&tumbler_spheres)?;
+        let (tumbler_mesh, coarse_tumbler, paint) = tumbler_look(&tumbler_spheres)?;
         let camera = FlyCamera::from_camera(&Camera::overview(room));
         Ok(App {
             log: EventLog::new(options.log_events),
@@ -218,6 +220,7 @@ impl App {
             options,
             tumbler_spheres,
             tumbler_mesh,
+            coarse_tumbler,
             paint,
             running: None,
             error: None,
@@ -503,6 +506,19 @@ impl App {
         }
     }
 
+    /// A renderer of the tumblers as they look now, drawing with
+    /// `settings` into `format`.
+    fn renderer(
+        &self,
+        gpu: &rolypoly_render::Gpu,
+        settings: RenderSettings,
+        format: wgpu::TextureFormat,
+    ) -> Renderer {
+        let mut renderer = Renderer::new(gpu, settings, format, &self.tumbler_mesh, &self.paint);
+        renderer.set_coarse_tumbler(gpu, &self.coarse_tumbler);
+        renderer
+    }
+
     /// The frames a second auto holds now: the scene's, or the default of
     /// the window's adapter and display.
     fn target_fps(&self) -> f64 {
@@ -529,13 +545,11 @@ impl App {
             QualityChange::None => {}
             QualityChange::Scale => r.renderer.set_resolution(self.quality.scale()),
             QualityChange::Level => {
-                r.renderer = Renderer::new(
-                    &r.gpu,
-                    self.quality.settings(),
-                    r.renderer.output_format(),
-                    &self.tumbler_mesh,
-                    &self.paint,
-                );
+                if let Some(r) = self.running.take() {
+                    let format = r.renderer.output_format();
+                    let renderer = self.renderer(&r.gpu, self.quality.settings(), format);
+                    self.running = Some(Running { renderer, ..r });
+                }
                 self.log.say(
                     "quality",
                     json!({ "level": self.quality.level().name(), "scale": self.quality.scale(), "why": self.hud_state.quality }),
@@ -702,8 +716,9 @@ fn seconds_since_1970() -> u64 {
 }
 
 /// The mesh a tumbler of `spheres` is drawn with, and its paint.
-fn tumbler_look(spheres: &[SphereSpec]) -> anyhow::Result<(MeshData, image::RgbaImage)> {
+fn tumbler_look(spheres: &[SphereSpec]) -> anyhow::Result<(MeshData, MeshData, image::RgbaImage)> {
     let designed = &rolypoly_physics::WorldConfig::default().tumblers.spheres;
     let mesh = rolypoly_render::mesh_for(spheres, designed)?;
-    Ok((mesh, rolypoly_render::tumbler_paint(spheres)))
+    let coarse = rolypoly_render::coarse_tumbler_mesh(spheres);
+    Ok((mesh, coarse, rolypoly_render::tumbler_paint(spheres)))
 }

@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use anyhow::Context as _;
 use glam::Vec2;
-use rolypoly_render::{AUTO_TARGET_FPS, Gpu, Renderer};
+use rolypoly_render::{AUTO_TARGET_FPS, Gpu};
 use serde_json::json;
 use winit::dpi::PhysicalSize;
 use winit::event_loop::ActiveEventLoop;
@@ -85,13 +85,7 @@ impl App {
         let software = gpu.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
         self.quality
             .set_temporal(self.options.temporal.unwrap_or(!software));
-        let renderer = Renderer::new(
-            &gpu,
-            self.quality.settings(),
-            format,
-            &self.tumbler_mesh,
-            &self.paint,
-        );
+        let renderer = self.renderer(&gpu, self.quality.settings(), format);
         let hud = Hud::new(&window, &gpu, format);
         self.sandbox.use_device(crate::sandbox::Device {
             device: gpu.device.clone(),
