@@ -1,7 +1,12 @@
-// Temporal anti-aliasing with upsampling (see temporal.rs), in two passes at
-// the output's resolution over the frame tone-mapped at the lit one:
+// Temporal anti-aliasing with upsampling (see temporal.rs), in three passes
+// over the frame tone-mapped at the lit resolution:
 //
-// `fs_resolve` follows each output pixel back to where it was the frame
+// `fs_neighbourhood`, at the lit resolution, sums up each texel's 3 x 3
+// neighbourhood once for the several output pixels that read it: its mean
+// and spread in YCoCg, the most any of it moved, and whether the texel
+// shows something other than the frame before did there.
+//
+// `fs_resolve`, at the output's resolution, follows each output pixel back to where it was the frame
 // before (the motion of the lit texel it falls in), clips that history to
 // the current frame's neighbourhood (variance clipping in YCoCg, Salvi
 // 2016), and folds in the current sample, weighted by how close the
@@ -28,12 +33,19 @@ struct Params {
     // xy: where this frame's sample lies in each lit texel, from its centre,
     // in texels; z: the history holds a frame (1) or not (0); w: sharpening.
     values: vec4<f32>,
+    // xy: the output's size in pixels.
+    output: vec4<f32>,
 };
 @group(0) @binding(4) var<uniform> params: Params;
 // The surfaces' normals and distances from the eye (w), this frame's and
 // the last's, at the lit resolution.
 @group(0) @binding(5) var geometry: texture_2d<f32>;
 @group(0) @binding(6) var geometry_before: texture_2d<f32>;
+// The neighbourhood of each lit texel (see `fs_neighbourhood`): its mean
+// in YCoCg and the most it moved in output pixels; its spread and whether
+// it was disoccluded.
+@group(0) @binding(7) var neighbourhood_mean: texture_2d<f32>;
+@group(0) @binding(8) var neighbourhood_spread: texture_2d<f32>;
 
 // The most weight a history keeps: a new sample at a pixel's centre then
 // counts for 1 / (1 + MAX_WEIGHT) of the result, so a picture settles over
@@ -120,19 +132,16 @@ fn history_at(uv: vec2<f32>, still: bool) -> vec4<f32> {
     return max(sum / total, vec4<f32>(0.0));
 }
 
+struct Neighbourhood {
+    @location(0) mean: vec4<f32>,
+    @location(1) spread: vec4<f32>,
+};
+
 @fragment
-fn fs_resolve(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let out_size = vec2<f32>(textureDimensions(history));
+fn fs_neighbourhood(@builtin(position) position: vec4<f32>) -> Neighbourhood {
     let lit_size = vec2<f32>(textureDimensions(current));
     let last = vec2<i32>(lit_size) - 1;
-    let uv = position.xy / out_size;
-    let sample_offset = params.values.xy;
-    // The pixel's centre among the lit texels, and the texel whose sample
-    // fell nearest it.
-    let at = uv * lit_size - sample_offset;
-    let texel = clamp(vec2<i32>(floor(at)), vec2<i32>(0), last);
-    let off_centre = (at - (vec2<f32>(texel) + 0.5)) * out_size / lit_size;
-
+    let texel = vec2<i32>(position.xy);
     var sum = vec3<f32>(0.0);
     var sum_sq = vec3<f32>(0.0);
     // The most any surface around moved, in output pixels: where nothing
@@ -145,29 +154,47 @@ fn fs_resolve(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
             let c = to_ycocg(textureLoad(current, at_texel, 0).rgb);
             sum += c;
             sum_sq += c * c;
-            most_moved = max(most_moved, length(textureLoad(motion, at_texel, 0).xy * out_size));
+            most_moved = max(most_moved, length(textureLoad(motion, at_texel, 0).xy * params.output.xy));
         }
     }
     let mean = sum / 9.0;
     let spread = sqrt(max(sum_sq / 9.0 - mean * mean, vec3<f32>(0.0)));
+    // Seen at a different distance the frame before, the place showed
+    // something else then (what has moved off it): its history is not
+    // this surface's.
+    let before = position.xy / lit_size + textureLoad(motion, texel, 0).xy;
+    let distance = textureLoad(geometry, texel, 0).w;
+    let texel_before = clamp(vec2<i32>(before * lit_size), vec2<i32>(0), last);
+    let distance_before = textureLoad(geometry_before, texel_before, 0).w;
+    let disoccluded = abs(distance_before - distance) > DISOCCLUDED * max(distance, distance_before);
+    return Neighbourhood(vec4<f32>(mean, most_moved), vec4<f32>(spread, select(0.0, 1.0, disoccluded)));
+}
+
+@fragment
+fn fs_resolve(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let out_size = vec2<f32>(textureDimensions(history));
+    let lit_size = vec2<f32>(textureDimensions(current));
+    let last = vec2<i32>(lit_size) - 1;
+    let uv = position.xy / out_size;
+    let sample_offset = params.values.xy;
+    // The pixel's centre among the lit texels, and the texel whose sample
+    // fell nearest it.
+    let at = uv * lit_size - sample_offset;
+    let texel = clamp(vec2<i32>(floor(at)), vec2<i32>(0), last);
+    let off_centre = (at - (vec2<f32>(texel) + 0.5)) * out_size / lit_size;
+    let around = textureLoad(neighbourhood_mean, texel, 0);
+    let mean = around.xyz;
+    let most_moved = around.w;
+    let spread_and_seen = textureLoad(neighbourhood_spread, texel, 0);
+    let spread = spread_and_seen.xyz;
     // The sample, and the current frame spread smoothly (for a pixel with
     // no history).
     let nearest = textureLoad(current, texel, 0).rgb;
     let spread_over = textureSampleLevel(current, smooth_sampler, at / lit_size, 0.0).rgb;
 
-    let moved = textureLoad(motion, texel, 0).xy;
-    let before = uv + moved;
+    let before = uv + textureLoad(motion, texel, 0).xy;
     let on_screen = all(before >= vec2<f32>(0.0)) && all(before <= vec2<f32>(1.0));
-    if params.values.z < 0.5 || !on_screen {
-        return vec4<f32>(spread_over, FRESH_WEIGHT);
-    }
-    // Seen at a different distance the frame before, the place showed
-    // something else then (what has moved off it): its history is not
-    // this surface's.
-    let distance = textureLoad(geometry, texel, 0).w;
-    let texel_before = clamp(vec2<i32>(before * lit_size), vec2<i32>(0), last);
-    let distance_before = textureLoad(geometry_before, texel_before, 0).w;
-    if abs(distance_before - distance) > DISOCCLUDED * max(distance, distance_before) {
+    if params.values.z < 0.5 || !on_screen || spread_and_seen.w > 0.5 {
         return vec4<f32>(spread_over, FRESH_WEIGHT);
     }
     let still = most_moved < STILL;

@@ -894,13 +894,22 @@ impl Renderer {
                 pass.draw(0..3, 0..1);
                 drop(pass);
                 draw_calls += 1;
-                match (history, &targets.motion, &targets.geometry_before) {
-                    (Some((history, sample_offset)), Some(motion), Some((_, geometry_before))) => {
+                let temporal = (
+                    &targets.motion,
+                    &targets.geometry_before,
+                    &targets.neighbourhood,
+                );
+                match (history, temporal) {
+                    (
+                        Some((history, sample_offset)),
+                        (Some(motion), Some((_, geometry_before)), Some(neighbourhood)),
+                    ) => {
                         let inputs = ResolveInputs {
                             composed,
                             motion,
                             geometry: &targets.geometry,
                             geometry_before,
+                            neighbourhood,
                             sampler: &self.smooth_sampler,
                             sample_offset,
                         };
@@ -912,7 +921,7 @@ impl Renderer {
                             &inputs,
                             None,
                         );
-                        draw_calls += 1;
+                        draw_calls += 2;
                         ((&self.taa.sharpen, &sharpen), stamps(None, Some(5)))
                     }
                     _ => ((&self.pipelines.upscale, upscale), stamps(None, Some(5))),

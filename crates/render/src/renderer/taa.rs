@@ -1,5 +1,6 @@
-//! The temporal path's two passes (taa.wgsl) and the history they keep at
-//! the output's resolution (see [`crate::temporal`]).
+//! The temporal path's passes (taa.wgsl): each lit texel's neighbourhood,
+//! the resolve into the history kept at the output's resolution, and the
+//! sharpening into the output (see [`crate::temporal`]).
 
 use super::bindings::{filtering_sampler_entry, texture_entry, uniform_entry};
 use super::pipelines::{screen_pipeline, screen_shader};
@@ -9,14 +10,21 @@ use wgpu::util::DeviceExt;
 pub(super) const HISTORY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// A surface's motion on screen since the last frame, in uv.
 pub(super) const MOTION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg16Float;
+/// Each lit texel's neighbourhood: its mean and spread in YCoCg, the most
+/// it moved and whether it was disoccluded.
+pub(super) const NEIGHBOURHOOD_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// How strongly the output is sharpened after the resolve where a pixel
 /// has gathered little history: the unsharp mask's weight on the
 /// difference from its four neighbours (see `fs_sharpen`).
 const SHARPNESS: f32 = 0.25;
 
-/// The resolve and sharpening pipelines, over one layout.
+/// The neighbourhood, resolve and sharpening pipelines.
 pub(super) struct TaaPipelines {
+    /// What the neighbourhood pass reads.
+    around_layout: wgpu::BindGroupLayout,
+    around: wgpu::RenderPipeline,
+    /// What the resolve and the sharpening read.
     layout: wgpu::BindGroupLayout,
     resolve: wgpu::RenderPipeline,
     pub sharpen: wgpu::RenderPipeline,
@@ -83,6 +91,9 @@ pub(super) struct ResolveInputs<'a> {
     /// Its surfaces' normals and distances, and the last frame's.
     pub geometry: &'a wgpu::TextureView,
     pub geometry_before: &'a wgpu::TextureView,
+    /// Where the neighbourhood pass writes each lit texel's (mean and most
+    /// moved; spread and disoccluded).
+    pub neighbourhood: &'a [wgpu::TextureView; 2],
     pub sampler: &'a wgpu::Sampler,
     /// Where this frame's sample lies in each lit texel (see
     /// [`crate::temporal::jitter`]).
@@ -99,11 +110,49 @@ impl TaaPipelines {
                 texture_entry(2, true),
                 filtering_sampler_entry(3),
                 uniform_entry(4, wgpu::ShaderStages::FRAGMENT),
+                texture_entry(7, false),
+                texture_entry(8, false),
+            ],
+        });
+        let around_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("taa neighbourhood"),
+            entries: &[
+                texture_entry(0, false),
+                texture_entry(1, false),
+                uniform_entry(4, wgpu::ShaderStages::FRAGMENT),
                 texture_entry(5, false),
                 texture_entry(6, false),
             ],
         });
         let shader = screen_shader(device, "taa.wgsl", include_str!("../../shaders/taa.wgsl"));
+        let around_pipeline_layout =
+            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some("taa neighbourhood"),
+                bind_group_layouts: &[Some(&around_layout)],
+                immediate_size: 0,
+            });
+        let target = Some(wgpu::ColorTargetState::from(NEIGHBOURHOOD_FORMAT));
+        let around = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("taa neighbourhood"),
+            layout: Some(&around_pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_screen"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: Default::default(),
+            depth_stencil: None,
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_neighbourhood"),
+                compilation_options: Default::default(),
+                targets: &[target.clone(), target],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
         let pipeline = |label, entry, format: wgpu::TextureFormat| {
             screen_pipeline(
                 device,
@@ -115,20 +164,22 @@ impl TaaPipelines {
             )
         };
         TaaPipelines {
+            around_layout,
+            around,
             resolve: pipeline("taa resolve", "fs_resolve", HISTORY_FORMAT),
             sharpen: pipeline("taa sharpen", "fs_sharpen", output_format),
             params: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("taa params"),
-                contents: bytemuck::cast_slice(&[0.0f32; 4]),
+                contents: bytemuck::cast_slice(&[0.0f32; 8]),
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             }),
             layout,
         }
     }
 
-    /// Records the resolve of this frame into `history`, and returns the
-    /// bind group the sharpening pass reads it through (drawn by the
-    /// caller into the output, with what goes over it).
+    /// Records this frame's neighbourhoods and its resolve into `history`,
+    /// and returns the bind group the sharpening pass reads it through
+    /// (drawn by the caller into the output, with what goes over it).
     pub fn resolve(
         &self,
         device: &wgpu::Device,
@@ -139,13 +190,19 @@ impl TaaPipelines {
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites>,
     ) -> wgpu::BindGroup {
         let holds = if history.frames > 0 { 1.0 } else { 0.0 };
+        let (width, height) = history.size;
         let params = [
             inputs.sample_offset.x,
             inputs.sample_offset.y,
             holds,
             SHARPNESS,
+            width as f32,
+            height as f32,
+            0.0,
+            0.0,
         ];
         queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&params));
+        self.neighbourhood(device, encoder, inputs);
         let (read, write) = (history.latest, 1 - history.latest);
         let reading = self.bind_group(device, inputs, &history.views[read]);
         let mut pass = super::screen_pass(encoder, &history.views[write], timestamp_writes);
@@ -156,6 +213,56 @@ impl TaaPipelines {
         history.latest = write;
         history.frames = history.frames.saturating_add(1);
         self.bind_group(device, inputs, &history.views[write])
+    }
+
+    /// Each lit texel's neighbourhood, into `inputs.neighbourhood`.
+    fn neighbourhood(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &ResolveInputs,
+    ) {
+        let texture = |binding, view| wgpu::BindGroupEntry {
+            binding,
+            resource: wgpu::BindingResource::TextureView(view),
+        };
+        let reading = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("taa neighbourhood"),
+            layout: &self.around_layout,
+            entries: &[
+                texture(0, inputs.composed),
+                texture(1, inputs.motion),
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: self.params.as_entire_binding(),
+                },
+                texture(5, inputs.geometry),
+                texture(6, inputs.geometry_before),
+            ],
+        });
+        let attachment = |view| {
+            Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })
+        };
+        let [mean, spread] = inputs.neighbourhood;
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("taa neighbourhood"),
+            color_attachments: &[attachment(mean), attachment(spread)],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.around);
+        pass.set_bind_group(0, &reading, &[]);
+        pass.draw(0..3, 0..1);
     }
 
     fn bind_group(
@@ -183,8 +290,8 @@ impl TaaPipelines {
                     binding: 4,
                     resource: self.params.as_entire_binding(),
                 },
-                texture(5, inputs.geometry),
-                texture(6, inputs.geometry_before),
+                texture(7, &inputs.neighbourhood[0]),
+                texture(8, &inputs.neighbourhood[1]),
             ],
         })
     }

@@ -8,7 +8,7 @@
 use super::bloom::{BloomChain, BloomPipelines};
 use super::debug_marks::DebugMarksPass;
 use super::occlusion::{OcclusionPipeline, OcclusionTarget};
-use super::taa::MOTION_FORMAT;
+use super::taa::{MOTION_FORMAT, NEIGHBOURHOOD_FORMAT};
 use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT};
 
 /// Size-dependent render targets.
@@ -34,6 +34,8 @@ pub(super) struct Targets {
     /// The surfaces' motion since the last frame (the temporal path only,
     /// which draws without multisampling).
     pub motion: Option<wgpu::TextureView>,
+    /// Each lit texel's neighbourhood (the temporal path only).
+    pub neighbourhood: Option<[wgpu::TextureView; 2]>,
     pub bloom: BloomChain,
     pub occlusion: OcclusionTarget,
     /// Reads `hdr`, the glow and the occlusion for tone mapping.
@@ -151,6 +153,10 @@ impl Targets {
         let motion = kit
             .temporal
             .then(|| texture("motion", MOTION_FORMAT, 1, drawn_and_read));
+        let neighbourhood = kit.temporal.then(|| {
+            ["neighbourhood mean", "neighbourhood spread"]
+                .map(|label| texture(label, NEIGHBOURHOOD_FORMAT, 1, drawn_and_read))
+        });
         let bloom = BloomChain::new(device, kit.bloom, &hdr, scene_size);
         let occlusion = kit.occlusion.target(device, &geometry, scene_size);
         let tonemap_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -210,6 +216,7 @@ impl Targets {
             geometry_before,
             geometry_msaa,
             motion,
+            neighbourhood,
             bloom,
             occlusion,
             tonemap_bind_group,
