@@ -822,6 +822,42 @@ mod tests {
         );
     }
 
+    /// `--scale` takes a share from the window's least scale up to 1, and
+    /// `--temporal` takes the place of `--msaa`; the window's two temporal
+    /// flags exclude each other, and neither leaves the adapter's default.
+    #[test]
+    fn scales_and_the_temporal_path_are_checked() {
+        let render = |extra: &[&str]| {
+            let mut args = vec!["rolypoly", "render", "--out", "a.png"];
+            args.extend_from_slice(extra);
+            Cli::try_parse_from(args)
+        };
+        let cli = render(&["--scale", "0.5", "--temporal"]).unwrap();
+        let Some(Command::Render(args)) = cli.command else {
+            panic!("render")
+        };
+        assert_eq!((args.frame.scale, args.frame.temporal), (Some(0.5), true));
+        for bad in ["0.2", "1.5", "0", "half", "NaN"] {
+            let error = render(&["--scale", bad]).unwrap_err().to_string();
+            assert!(error.contains("is not a render scale"), "{bad}: {error}");
+        }
+        let error = render(&["--temporal", "--msaa", "4"])
+            .unwrap_err()
+            .to_string();
+        assert!(error.contains("cannot be used with"), "{error}");
+        assert!(Cli::try_parse_from(["rolypoly", "--temporal", "--no-temporal"]).is_err());
+        let window = |args: &[&str]| {
+            Cli::try_parse_from(args)
+                .unwrap()
+                .window
+                .options(1, None)
+                .temporal
+        };
+        assert_eq!(window(&["rolypoly"]), None);
+        assert_eq!(window(&["rolypoly", "--temporal"]), Some(true));
+        assert_eq!(window(&["rolypoly", "--no-temporal"]), Some(false));
+    }
+
     #[test]
     fn seconds_round_to_steps() {
         assert_eq!(steps_for(10.0, 1.0 / 120.0), 1200);

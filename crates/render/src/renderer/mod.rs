@@ -100,7 +100,7 @@ pub struct RenderSettings {
     pub early_ball_depth: bool,
     /// Temporal anti-aliasing with upsampling: each frame jittered, then
     /// resolved against the frames before it at the output's resolution
-    /// (see [`crate::temporal`]). It takes the place of multisampling,
+    /// (see [`crate::jitter`]). It takes the place of multisampling,
     /// which it turns off.
     pub temporal: bool,
     /// Draw the tumblers with their coarse mesh, where the renderer has one
