@@ -62,6 +62,11 @@ const MOVING_FRESH_WEIGHT: f32 = 1.0;
 // How much, as a share, the distance seen at a place may differ from the
 // last frame's before the place is taken to show something else.
 const DISOCCLUDED: f32 = 0.02;
+// How far the history's mean over a neighbourhood may depart from now's,
+// in standard errors of a mean of nine (the spread over 3) and beyond a
+// floor, before the light there counts as changed.
+const RELIT_SPREAD: f32 = 3.0;
+const RELIT_FLOOR: f32 = 0.03;
 // Motion, in output pixels, below which a surface counts as still.
 const STILL: f32 = 0.05;
 // How sharply a sample's weight falls with its distance d from the pixel's
@@ -159,6 +164,27 @@ fn fs_neighbourhood(@builtin(position) position: vec4<f32>) -> Neighbourhood {
     }
     let mean = sum / 9.0;
     let spread = sqrt(max(sum_sq / 9.0 - mean * mean, vec3<f32>(0.0)));
+    // The light changed here (a shadow moved over a still surface) where the
+    // history's mean over the same neighbourhood departs from now's: means
+    // over nine texels, so that a fine texture, which spreads the
+    // neighbourhood as widely as a shadow darkens it, averages out of both.
+    // Such a place is treated as moving.
+    if params.values.z > 0.5 {
+        var past_sum = vec3<f32>(0.0);
+        for (var dy = -1; dy <= 1; dy++) {
+            for (var dx = -1; dx <= 1; dx++) {
+                let at_texel = clamp(texel + vec2<i32>(dx, dy), vec2<i32>(0), last);
+                let came_from = (vec2<f32>(at_texel) + 0.5) / lit_size + textureLoad(motion, at_texel, 0).xy;
+                past_sum += to_ycocg(textureSampleLevel(history, smooth_sampler, came_from, 0.0).rgb);
+            }
+        }
+        let change = length(past_sum / 9.0 - mean);
+        if change > RELIT_SPREAD * length(spread) / 3.0 + RELIT_FLOOR {
+            // A pixel's worth, well clear of STILL after the target's
+            // rounding to half precision.
+            most_moved = max(most_moved, 1.0);
+        }
+    }
     // Seen at a different distance the frame before, the place showed
     // something else then (what has moved off it): its history is not
     // this surface's.
@@ -207,7 +233,9 @@ fn fs_resolve(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
     var sample = nearest * weight;
     if still {
         kept = min(kept, MAX_WEIGHT);
-        // A still surface whose light changed (a shadow moved over it).
+        // Held to a wide box: the current neighbourhood is sampled
+        // elsewhere than the history was, and a fine texture varies more
+        // between them than across either.
         past_color = clip_to_box(past_color, mean, spread * STILL_CLIP_SPREAD + STILL_CLIP_FLOOR);
     } else {
         // Near what moves, the history may hold what moved away: it is

@@ -119,6 +119,8 @@ impl TaaPipelines {
             entries: &[
                 texture_entry(0, false),
                 texture_entry(1, false),
+                texture_entry(2, true),
+                filtering_sampler_entry(3),
                 uniform_entry(4, wgpu::ShaderStages::FRAGMENT),
                 texture_entry(5, false),
                 texture_entry(6, false),
@@ -202,8 +204,8 @@ impl TaaPipelines {
             0.0,
         ];
         queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&params));
-        self.neighbourhood(device, encoder, inputs);
         let (read, write) = (history.latest, 1 - history.latest);
+        self.neighbourhood(device, encoder, inputs, &history.views[read]);
         let reading = self.bind_group(device, inputs, &history.views[read]);
         let mut pass = super::screen_pass(encoder, &history.views[write], timestamp_writes);
         pass.set_pipeline(&self.resolve);
@@ -215,12 +217,14 @@ impl TaaPipelines {
         self.bind_group(device, inputs, &history.views[write])
     }
 
-    /// Each lit texel's neighbourhood, into `inputs.neighbourhood`.
+    /// Each lit texel's neighbourhood, into `inputs.neighbourhood`, and
+    /// whether the light there changed since the `history`.
     fn neighbourhood(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         inputs: &ResolveInputs,
+        history: &wgpu::TextureView,
     ) {
         let texture = |binding, view| wgpu::BindGroupEntry {
             binding,
@@ -232,6 +236,11 @@ impl TaaPipelines {
             entries: &[
                 texture(0, inputs.composed),
                 texture(1, inputs.motion),
+                texture(2, history),
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(inputs.sampler),
+                },
                 wgpu::BindGroupEntry {
                     binding: 4,
                     resource: self.params.as_entire_binding(),

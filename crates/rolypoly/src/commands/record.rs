@@ -55,7 +55,13 @@ pub fn record(
         ticks_heard(sim, steps - steps_done, &mut recording);
         steps_done = steps;
         sim.check_gpu()?;
-        frames.draw(sim, light)
+        if k == 0 {
+            // On the temporal path the first frame draws its history of
+            // the first moment first, as `render` does.
+            frames.draw_at(sim, steps, light)
+        } else {
+            frames.draw(sim, light)
+        }
     })?;
     // The last frame is shown for 1 / fps: the sound runs to its end.
     let end = steps_for(f64::from(count) / f64::from(args.clip.fps), dt);
