@@ -322,6 +322,25 @@ pub(super) fn screen_pipeline(
     (vertex, fragment): (&str, &str),
     target: wgpu::ColorTargetState,
 ) -> wgpu::RenderPipeline {
+    screen_pipeline_into(
+        device,
+        label,
+        layout,
+        shader,
+        (vertex, fragment),
+        &[Some(target)],
+    )
+}
+
+/// As [`screen_pipeline`], drawing into several `targets` at once.
+pub(super) fn screen_pipeline_into(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    shader: &wgpu::ShaderModule,
+    (vertex, fragment): (&str, &str),
+    targets: &[Option<wgpu::ColorTargetState>],
+) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: &[Some(layout)],
@@ -343,7 +362,7 @@ pub(super) fn screen_pipeline(
             module: shader,
             entry_point: Some(fragment),
             compilation_options: Default::default(),
-            targets: &[Some(target)],
+            targets,
         }),
         multiview_mask: None,
         cache: None,

@@ -3,7 +3,7 @@
 //! sharpening into the output (see [`crate::temporal`]).
 
 use super::bindings::{filtering_sampler_entry, texture_entry, uniform_entry};
-use super::pipelines::{screen_pipeline, screen_shader};
+use super::pipelines::{screen_pipeline, screen_pipeline_into, screen_shader};
 use wgpu::util::DeviceExt;
 
 /// The resolved history: the picture, and in alpha the weight it holds.
@@ -127,34 +127,15 @@ impl TaaPipelines {
             ],
         });
         let shader = screen_shader(device, "taa.wgsl", include_str!("../../shaders/taa.wgsl"));
-        let around_pipeline_layout =
-            device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("taa neighbourhood"),
-                bind_group_layouts: &[Some(&around_layout)],
-                immediate_size: 0,
-            });
         let target = Some(wgpu::ColorTargetState::from(NEIGHBOURHOOD_FORMAT));
-        let around = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("taa neighbourhood"),
-            layout: Some(&around_pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_screen"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: Default::default(),
-            depth_stencil: None,
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_neighbourhood"),
-                compilation_options: Default::default(),
-                targets: &[target.clone(), target],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let around = screen_pipeline_into(
+            device,
+            "taa neighbourhood",
+            &around_layout,
+            &shader,
+            ("vs_screen", "fs_neighbourhood"),
+            &[target.clone(), target],
+        );
         let pipeline = |label, entry, format: wgpu::TextureFormat| {
             screen_pipeline(
                 device,
@@ -226,29 +207,14 @@ impl TaaPipelines {
         inputs: &ResolveInputs,
         history: &wgpu::TextureView,
     ) {
-        let texture = |binding, view| wgpu::BindGroupEntry {
-            binding,
-            resource: wgpu::BindingResource::TextureView(view),
-        };
-        let reading = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("taa neighbourhood"),
-            layout: &self.around_layout,
-            entries: &[
-                texture(0, inputs.composed),
-                texture(1, inputs.motion),
-                texture(2, history),
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(inputs.sampler),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: self.params.as_entire_binding(),
-                },
-                texture(5, inputs.geometry),
-                texture(6, inputs.geometry_before),
-            ],
-        });
+        let reading = self.bind_group_over(
+            device,
+            "taa neighbourhood",
+            &self.around_layout,
+            inputs,
+            history,
+            [(5, inputs.geometry), (6, inputs.geometry_before)],
+        );
         let attachment = |view| {
             Some(wgpu::RenderPassColorAttachment {
                 view,
@@ -274,19 +240,45 @@ impl TaaPipelines {
         pass.draw(0..3, 0..1);
     }
 
+    /// What the resolve and the sharpening read, with `history` as the
+    /// history.
     fn bind_group(
         &self,
         device: &wgpu::Device,
         inputs: &ResolveInputs,
         history: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
+        let [mean, spread] = inputs.neighbourhood;
+        self.bind_group_over(
+            device,
+            "taa",
+            &self.layout,
+            inputs,
+            history,
+            [(7, mean), (8, spread)],
+        )
+    }
+
+    /// A bind group over `layout`: what every pass of the path reads (the
+    /// frame, its motion, `history`, the sampler and the parameters), and
+    /// the two textures of the pass's `own`.
+    fn bind_group_over(
+        &self,
+        device: &wgpu::Device,
+        label: &str,
+        layout: &wgpu::BindGroupLayout,
+        inputs: &ResolveInputs,
+        history: &wgpu::TextureView,
+        own: [(u32, &wgpu::TextureView); 2],
+    ) -> wgpu::BindGroup {
         let texture = |binding, view| wgpu::BindGroupEntry {
             binding,
             resource: wgpu::BindingResource::TextureView(view),
         };
+        let [(a, first), (b, second)] = own;
         device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("taa"),
-            layout: &self.layout,
+            label: Some(label),
+            layout,
             entries: &[
                 texture(0, inputs.composed),
                 texture(1, inputs.motion),
@@ -299,8 +291,8 @@ impl TaaPipelines {
                     binding: 4,
                     resource: self.params.as_entire_binding(),
                 },
-                texture(7, &inputs.neighbourhood[0]),
-                texture(8, &inputs.neighbourhood[1]),
+                texture(a, first),
+                texture(b, second),
             ],
         })
     }
