@@ -552,16 +552,6 @@ impl Renderer {
         })
     }
 
-    /// Forgets the frames the temporal path has gathered: the next frame
-    /// starts its history afresh (after a cut, where nothing of the last
-    /// picture belongs in the next).
-    pub fn forget_history(&mut self) {
-        if let Some(history) = &mut self.history {
-            history.forget();
-        }
-        self.temporal.previous_view_proj = None;
-    }
-
     /// `camera`'s view-projections this frame, for an output of `size` lit
     /// at `scene_size`: jittered on the temporal path.
     fn projections(

@@ -75,11 +75,6 @@ impl History {
     pub fn size(&self) -> (u32, u32) {
         self.size
     }
-
-    /// Forgets every frame it holds: the next one starts afresh.
-    pub fn forget(&mut self) {
-        self.frames = 0;
-    }
 }
 
 /// What the resolve reads this frame besides the history.
