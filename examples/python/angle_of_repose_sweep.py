@@ -3,7 +3,7 @@ for every friction coefficient by every rolling resistance, four seeds
 each, swept on a Dask cluster by rolypoly.sweep. Each point is the mean
 of the four heaps, its bar their standard deviation.
 
-Runs on a LocalCluster of two worker processes on this machine; give a
+Runs on a LocalCluster of two worker processes on the local machine; give a
 scheduler's address to run the same code on a cluster:
 
     python examples/python/angle_of_repose_sweep.py [tcp://scheduler:8786]

@@ -1,5 +1,5 @@
 """A ball dropped on the floor of a room of restitution e: each bounce
-reaches e² of the height before (SPEC P4), for three e.
+reaches e² of the height before (requirement P4), for three e.
 
 Writes docs/python/bounce_heights.png. Run: python examples/python/bounce_heights.py
 """

@@ -1,5 +1,5 @@
 """The elastic gas (scenes/elastic-gas.toml: restitution 1, no friction,
-no gravity) keeps its energy over 10 s (SPEC E1); the same gas with
+no gravity) keeps its energy over 10 s (requirement E1); the same gas with
 friction between balls and on the walls loses it.
 
 Writes docs/python/elastic_gas_energy.png. Run: python examples/python/elastic_gas_energy.py
@@ -48,7 +48,7 @@ def main():
               f"largest change {100 * np.abs(change).max():.2e} %, {impacts} impacts")
         if not overrides:
             drift.plot(t, change, color=color, label=f"largest change {np.abs(change).max():.1e}")
-            drift.axhspan(-1e-3, 1e-3, color="tab:green", alpha=0.15, label="SPEC E1 bound (0.1 %)")
+            drift.axhspan(-1e-3, 1e-3, color="tab:green", alpha=0.15, label="E1 bound (0.1 %)")
     total.set(xlabel="time (s)", ylabel="total energy / start", title="400 balls, 10 s",
               ylim=(0, 1.05))
     total.legend(fontsize=8)

@@ -1,6 +1,6 @@
 """A tumbler let go at a tilt rocks back and forth; its period against the
 amplitude, and at small amplitudes the rolling pendulum's
-omega0² = g a / (k² + (R - a)²) (SPEC P6). R, a, k are the tumbler's own,
+omega0² = g a / (k² + (R - a)²) (requirement P6). R, a, k are the tumbler's own,
 read from a trace's scene line.
 
 Writes docs/python/tumbler_period.png. Run: python examples/python/tumbler_period.py

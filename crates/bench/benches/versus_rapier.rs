@@ -1,11 +1,13 @@
 //! The rolypoly engine against Rapier on the same ball pit, in one process.
 //!
-//! `cargo bench -p rolypoly-bench` runs pits of 1k, 10k and 100k balls
-//! twice: first with Coulomb friction 0.5 between balls (the headline
-//! table), then frictionless between balls; the walls' friction is 0.5 in
-//! both, and neither engine has rolling resistance.
-//! `cargo bench -p rolypoly-bench -- 1000 5000` picks the sizes and
-//! `-- 10000 10s` the simulated time too (3 s unless told). Each pit is
+//! `cargo bench -p rolypoly-bench --bench versus_rapier` runs pits of 1k,
+//! 10k and 100k balls twice: first with Coulomb friction 0.5 between balls
+//! (the headline table), then frictionless between balls; the walls'
+//! friction is 0.5 in both, and neither engine has rolling resistance.
+//! `cargo bench -p rolypoly-bench --bench versus_rapier -- 1000 5000` picks
+//! the sizes and `-- 10000 10s` the simulated time too (3 s unless told);
+//! the flags after `--` need the bench named, or every bench target of the
+//! crate, the library's test harness too, is handed them. Each pit is
 //! simulated for the same time by both engines from the same start, in
 //! turns of half a simulated second, on the same threads (all of the
 //! machine's, or `RAYON_NUM_THREADS`; Rapier is built with its `parallel`

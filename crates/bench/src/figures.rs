@@ -51,7 +51,8 @@ const SIZE: (u32, u32) = (640, 400);
 
 /// Steps per second of each engine at each size, with friction between
 /// balls and without, as one run of
-/// `cargo bench -p rolypoly-bench -- --csv FILE` wrote them: a bench run
+/// `cargo bench -p rolypoly-bench --bench versus_rapier -- --csv FILE`
+/// wrote them: a bench run
 /// takes minutes, so the figure is drawn from its record, not run anew.
 const STEPS_PER_SECOND: &str = include_str!("../../../docs/figures/steps-per-second.csv");
 

@@ -1,6 +1,7 @@
 //! The same ball pit in the rolypoly engine and in Rapier, and the figures
 //! that compare them: speed, and how well each keeps the balls apart, inside
-//! the box and at rest. `cargo bench -p rolypoly-bench` prints the table.
+//! the box and at rest. `cargo bench -p rolypoly-bench --bench
+//! versus_rapier` prints the table.
 
 #![warn(missing_docs)]
 

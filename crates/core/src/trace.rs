@@ -1,10 +1,10 @@
-//! JSON Lines traces of a simulation (SPEC A3), for analysis and plots.
+//! JSON Lines traces of a simulation (A3), for analysis and plots.
 //!
 //! The first line describes the scene (`"kind":"scene"`); each further line
 //! is the state of every body at one step (`"kind":"state"`) with the events
 //! since the previous state line. Floats are written by serde_json as the
 //! shortest text that reads back to the same bits, so two traces of the same
-//! run compare equal byte for byte (SPEC P10).
+//! run compare equal byte for byte (P10).
 
 use std::borrow::Cow;
 use std::fs::File;
@@ -107,7 +107,7 @@ impl<W: Write> TraceWriter<W> {
             fireball: FireballShape {
                 radius: config.fireball.radius,
                 speed: config.fireball.speed,
-                // SPEC P8: the fireball has a ball's mass.
+                // P8: the fireball has a ball's mass.
                 mass: config.balls.mass,
             },
         };

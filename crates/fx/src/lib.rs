@@ -1,4 +1,4 @@
-//! Particle effects of the rolypoly fireball, in the report's style of a
+//! Particle effects of the rolypoly fireball, in the style of a
 //! "cyber-punk space collapse": a fading trail of cubes, a ring spreading in
 //! a wall it hits, and the collapse and burst of a ball it hits (X1-X5).
 //!

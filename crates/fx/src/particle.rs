@@ -1,6 +1,7 @@
 //! Particles and their curves (X5): each kind has a size curve and an alpha
 //! curve over its normalised life `s` in 0..1, scaled by per-particle
-//! constants `k_scale` and `k_alpha`, as in the report's section 3.4.3.
+//! constants `k_scale` and `k_alpha`: a particle's size is `k_scale` times
+//! its size curve, its alpha `k_alpha` times its alpha curve.
 
 use glam::Vec3;
 use serde::{Deserialize, Serialize};

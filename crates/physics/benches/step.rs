@@ -1,8 +1,9 @@
 //! Step-time benchmark: the default scene, and the same room with many balls.
 //!
-//! Run with `cargo bench -p rolypoly-physics`. Prints one row per scene: the
-//! mean wall time of a step after a warm-up, steps per second, and ball-steps
-//! per second (how many ball updates the engine does per second).
+//! Run with `cargo bench -p rolypoly-physics --bench step`. Prints one row
+//! per scene: the mean wall time of a step after a warm-up, steps per
+//! second, and ball-steps per second (how many ball updates the engine does
+//! per second).
 
 use glam::DVec3;
 use rolypoly_physics::{World, WorldConfig};

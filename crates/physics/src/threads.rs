@@ -2,7 +2,7 @@
 //! workers dozens of times a step, between stages that run on one thread.
 //!
 //! A rayon worker that finds no work spins for a while and then sleeps;
-//! waking it takes tens of microseconds, on a virtual machine about as long
+//! waking it takes tens of microseconds, on a 2-core machine about as long
 //! as a stage's share of the work. So while a step runs, every other worker
 //! keeps looking for work instead of sleeping: the next stage's halves then
 //! start on both threads at once. The results do not depend on this, only

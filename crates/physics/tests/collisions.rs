@@ -1,4 +1,5 @@
-//! Ball-ball collisions against the report's 1-D formulas (P2, P3) and
+//! Ball-ball collisions against the classic 1-D formulas for balls along
+//! the line of centres (P2, P3) and
 //! momentum conservation (P1).
 
 mod common;
@@ -13,12 +14,13 @@ fn open_space(restitution: f64, n: usize) -> World {
     cfg.gravity = 0.0;
     cfg.room.size = DVec3::splat(40.0);
     cfg.balls.restitution = restitution;
-    // The 1-D formulas of the report: balls that slide on each other.
+    // The classic 1-D formulas hold for balls that slide on each other.
     cfg.balls.friction = 0.0;
     with_balls(cfg, n)
 }
 
-/// Velocities along the line of centres after an impact, from the report:
+/// Velocities along the line of centres after an impact, by the classic
+/// 1-D formulas:
 /// v1' = ((m1 - m2) v1 + 2 m2 v2) / (m1 + m2), and symmetrically, with the
 /// relative velocity scaled by the restitution so momentum is kept.
 fn expected_normal_speeds(m1: f64, m2: f64, v1: f64, v2: f64, e: f64) -> (f64, f64) {

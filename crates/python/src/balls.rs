@@ -169,7 +169,7 @@ impl Balls {
     }
 
     /// The colour each ball shows (r, g, b in linear light, 0 to 1): the
-    /// colour of what it hit last (SPEC P5). Shape (N, 3), float64.
+    /// colour of what it hit last (P5). Shape (N, 3), float64.
     #[getter]
     fn colors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         self.read(py, |balls, world| {

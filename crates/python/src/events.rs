@@ -1,4 +1,4 @@
-//! `rolypoly.Event`: one impact the physics reported (SPEC P9), with the
+//! `rolypoly.Event`: one impact the physics reported (P9), with the
 //! colour a ball took on from it (P5).
 
 use pyo3::prelude::*;

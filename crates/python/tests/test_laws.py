@@ -1,5 +1,5 @@
 """The laws a teacher checks, measured through Python over several
-sizes, seeds and settings: bounce heights fall by e² (SPEC P4), an elastic
+sizes, seeds and settings: bounce heights fall by e² (P4), an elastic
 room keeps its energy (E1), Newton's cradle passes the impulse along and
 keeps momentum (P1, E2)."""
 
@@ -58,7 +58,7 @@ def test_each_bounce_reaches_e_squared_of_the_last(e, radius, height, seed):
 
 @pytest.mark.parametrize(
     "count, seed, gravity, tolerance",
-    # SPEC E1: 0.1 % over 10 s without gravity, 0.5 % with it.
+    # E1: 0.1 % over 10 s without gravity, 0.5 % with it.
     [(50, 1, 0.0, 1e-3), (200, 2, 0.0, 1e-3), (400, 3, 0.0, 1e-3), (120, 4, 9.81, 5e-3), (400, 5, 9.81, 5e-3)],
 )
 def test_an_elastic_room_keeps_its_energy(count, seed, gravity, tolerance):

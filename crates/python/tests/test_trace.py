@@ -1,5 +1,5 @@
 """A trace written through Python is the program's trace, byte for byte
-(SPEC P10, A3): the same scene and seed, through `World.write_trace` and
+(P10, A3): the same scene and seed, through `World.write_trace` and
 through `rolypoly simulate --trace`."""
 
 import pytest

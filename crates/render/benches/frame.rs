@@ -1,9 +1,9 @@
 //! Off-screen frame benchmark: 1280x720, MSAA 4x, shadows on, the fireball
 //! in flight.
 //!
-//! Run with `cargo bench -p rolypoly-render`. For each scene it prints frames
-//! per second (waiting for the GPU after every frame), the CPU time our own
-//! code spends building and recording a frame, and the draw calls per frame,
+//! Run with `cargo bench -p rolypoly-render --bench frame`. For each scene
+//! it prints frames per second (waiting for the GPU after every frame), the
+//! CPU time our own code spends building and recording a frame, and the draw calls per frame,
 //! which must not grow with the number of balls. Each scene is drawn with
 //! every light effect on (as the program draws it), with each one off in
 //! turn, and with all off, and the all-on rate as a share of the all-off
@@ -17,12 +17,13 @@
 //! of frames. Last, half a second in, every debug view at once against
 //! none, and the processor's time to build their lines from the world.
 //!
-//! `-- --row-seconds S` draws each row for at least S seconds instead of
-//! two (a GPU's rows need less); `-- --only TEXT,TEXT` draws only the
-//! scenes whose name holds one of them (`default,10k`); `-- --million` ends with a million balls
-//! drawn from the GPU engine's own buffer (as `--engine gpu` draws the
-//! million-ball scene), the drawing alone, against the target of 30 frames
-//! a second on an H100-class GPU.
+//! `cargo bench -p rolypoly-render --bench frame -- --row-seconds S` draws
+//! each row for at least S seconds instead of two (a GPU's rows need less);
+//! `-- --only TEXT,TEXT` draws only the scenes whose name holds one of them
+//! (`default,10k`); `-- --million` ends with a million balls drawn from the
+//! GPU engine's own buffer (as `--engine gpu` draws the million-ball
+//! scene), the drawing alone, against the target of 30 frames a second on
+//! an H100-class GPU.
 
 use rolypoly_physics::{World, WorldConfig};
 use rolypoly_render::{

@@ -1,4 +1,4 @@
-// The white arrow cursor of grab mode (the report's cursor shader), drawn in
+// The cursor shader: the white arrow cursor of grab mode, drawn in
 // screen space over the finished frame: a black outline, then the white arrow.
 
 struct Cursor {

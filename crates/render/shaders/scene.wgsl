@@ -490,7 +490,7 @@ fn fs_emissive(in: VertexOut) -> SceneFragment {
 // Glowing and see-through, unlit, in premultiplied alpha: rgb is the light
 // added, a how much of what is behind is covered.
 // Kind 0, a cube: a hole in space (a dark, half-covering inside) framed by a
-// bright edge and a circuit-like grid, as in the report's "space collapse".
+// bright edge and a circuit-like grid: a "space collapse" look.
 // Kind 1, a shell: glow, brightest at its rim, over a veil.
 const SHELL_COVER: f32 = 0.7;
 @fragment

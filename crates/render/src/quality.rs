@@ -13,12 +13,13 @@ use crate::renderer::RenderSettings;
 /// How finely a frame is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Quality {
-    /// Half the resolution, one sample per pixel, four shadow taps, the
-    /// tumblers' coarse mesh where there is one.
+    /// Half the resolution, one sample per pixel, shadow taps 2 a side
+    /// (4 in all), the tumblers' coarse mesh where there is one.
     Low,
-    /// Full resolution, one sample per pixel, four shadow taps.
+    /// Full resolution, one sample per pixel, shadow taps 2 a side (4 in
+    /// all).
     Medium,
-    /// Full resolution, MSAA 4x, sixteen shadow taps.
+    /// Full resolution, MSAA 4x, shadow taps 4 a side (16 in all).
     High,
 }
 

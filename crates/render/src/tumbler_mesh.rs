@@ -312,7 +312,7 @@ mod tests {
         let fresh = to_obj(&tumbler_mesh(&spheres), OBJ_HEADER);
         assert!(
             fresh == DEFAULT_TUMBLER_OBJ,
-            "assets/tumbler.obj is stale: run `cargo run -p rolypoly -- make-tumbler-obj --out assets/tumbler.obj`"
+            "assets/tumbler.obj is stale: run `cargo run --release -- make-tumbler-obj --out assets/tumbler.obj`"
         );
     }
 

@@ -1,4 +1,4 @@
-//! The command line (SPEC A1-A3): global scene options and the subcommands.
+//! The command line (A1-A3): global scene options and the subcommands.
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -144,7 +144,7 @@ pub struct WindowArgs {
     #[arg(long, help_heading = WINDOW_HEADING)]
     pub log_events: bool,
 
-    /// Folder that F12 writes screenshots into.
+    /// Folder that the F12 key writes screenshots into.
     #[arg(long, value_name = "DIR", default_value = ".", help_heading = WINDOW_HEADING)]
     pub screenshot_dir: PathBuf,
 
@@ -308,7 +308,7 @@ impl SceneArgs {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Simulate a scene without a window or GPU and print a summary, or
+    /// Simulate a scene without a window and print a summary, or
     /// write a JSON Lines trace of every body, the energy and the events.
     Simulate(SimulateArgs),
     /// Simulate a scene to a moment and write that frame to a PNG, with the
@@ -580,7 +580,7 @@ fn parse_fps(text: &str) -> Result<f64, String> {
     }
 }
 
-/// A quality level by name.
+/// An engine by name.
 fn parse_engine(text: &str) -> Result<Engine, String> {
     Engine::from_name(text.trim()).ok_or_else(|| {
         format!(

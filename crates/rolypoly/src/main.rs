@@ -1,5 +1,5 @@
 //! `rolypoly`: parse the command line, run, and report any error as one
-//! message with its causes and a non-zero exit status (SPEC A4).
+//! message with its causes and a non-zero exit status (A4).
 
 use std::io::Write;
 use std::process::ExitCode;

@@ -1,4 +1,4 @@
-//! Every wait on the GPU is bounded (SPEC G4): a frame or an engine step
+//! Every wait on the GPU is bounded (G4): a frame or an engine step
 //! that takes longer than `--gpu-timeout` ends the program with one line
 //! naming what was waited for, the adapter and the bound, and a way out.
 

@@ -223,7 +223,7 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
     });
     assert_ne!(walked["position"], before);
 
-    // 1 shows the contacts, F3 opens the profiler, O takes the orbit
+    // 1 shows the contacts, the F3 key opens the profiler, O takes the orbit
     // camera and gives the view back; the camera then stands where it was.
     s.xdotool(&["key", "1"]);
     s.expect("the contacts view", |v| {
@@ -449,7 +449,7 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
         v["event"] == "fireball" && v["on"] == false
     });
 
-    // F12: a PNG of the window's size appears where it says.
+    // The F12 key: a PNG of the window's size appears where it says.
     s.xdotool(&["key", "F12"]);
     let shot = s.expect("a screenshot", |v| v["event"] == "screenshot");
     let path = PathBuf::from(shot["path"].as_str().expect("path"));

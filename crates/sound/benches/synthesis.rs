@@ -1,11 +1,11 @@
 //! What the sound costs: the synthesis' time per second of audio made, on
 //! one core, beside the physics' own time for the same steps.
 //!
-//! Run with `cargo bench -p rolypoly-sound`. Prints one row per scene: the
-//! seconds of audio, the synthesis' time, its share of one core (time per
-//! second of audio), the physics' time for the same steps, the strikes
-//! voiced and merged into the crowd's bed, and the loudest sample before
-//! the limiter.
+//! Run with `cargo bench -p rolypoly-sound --bench synthesis`. Prints one
+//! row per scene: the seconds of audio, the synthesis' time, its share of
+//! one core (time per second of audio), the physics' time for the same
+//! steps, the strikes voiced and merged into the crowd's bed, and the
+//! loudest sample before the limiter.
 
 use std::time::{Duration, Instant};
 

@@ -325,7 +325,7 @@ impl Checker<'_> {
             }
             self.real(&format!("{key}.mass"), s.mass, Bounds::positive(MAX_MASS))?;
         }
-        // SPEC P6: the centre of mass below the bottom sphere's centre is what
+        // P6: the centre of mass below the bottom sphere's centre is what
         // rights a tumbler; without it the toy would simply fall over.
         let mass: f64 = t.spheres.iter().map(|s| s.mass).sum();
         let com = t.spheres.iter().map(|s| s.mass * s.height).sum::<f64>() / mass;

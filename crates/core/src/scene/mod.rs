@@ -1,4 +1,4 @@
-//! Scene files (SPEC S6, A4): the built-in default scene overridden by a
+//! Scene files (S6, A4): the built-in default scene overridden by a
 //! user's TOML file, then range-checked.
 //!
 //! A scene is the physics ([`WorldConfig`]), the particle effects
@@ -48,7 +48,7 @@ pub const BUILTIN_ORIGIN: &str = "built-in default scene";
 /// Largest number of balls a scene may ask for.
 pub const MAX_BALLS: usize = 1_000_000;
 
-/// The number of spheres in a tumbler's compound shape (SPEC P6).
+/// The number of spheres in a tumbler's compound shape (P6).
 pub const TUMBLER_SPHERES: usize = 6;
 
 /// Smallest and largest particle capacity a scene may ask for.

@@ -13,7 +13,8 @@ use super::keys::{Allowed, Control, KEYS, Key, List, Slot, Takes};
 use super::save::value_of;
 
 /// The lines that open and close the reference in `docs/scenes.md`.
-pub const BEGIN_MARK: &str = "<!-- The key reference, written from the table of keys (crates/rolypoly/src/scene/keys.rs). -->";
+pub const BEGIN_MARK: &str =
+    "<!-- The key reference, written from the table of keys (crates/core/src/scene/keys.rs). -->";
 /// See [`BEGIN_MARK`].
 pub const END_MARK: &str = "<!-- End of the key reference. -->";
 
@@ -60,8 +61,8 @@ the same scene built in, and it is written from the program's table of
 scene keys (docs/scenes.md has the same as a table). Run with your own
 scene file:
 
-    rolypoly --scene my-scene.toml
-    rolypoly simulate --scene my-scene.toml --seconds 10
+    cargo run --release -- --scene my-scene.toml
+    cargo run --release -- simulate --scene my-scene.toml --seconds 10
 
 A scene file only needs the keys it changes; every key left out keeps the
 value shown here. Unknown keys are an error, and every value is checked
@@ -236,7 +237,7 @@ mod tests {
         assert!(
             page == expected,
             "docs/scenes.md's key reference is stale: run \
-             ROLYPOLY_BLESS=1 cargo test -p rolypoly --lib reference"
+             ROLYPOLY_BLESS=1 cargo test -p rolypoly-core --lib reference"
         );
     }
 
@@ -254,7 +255,7 @@ mod tests {
         assert!(
             file == expected,
             "scenes/default.toml is stale: run \
-             ROLYPOLY_BLESS=1 cargo test -p rolypoly --lib reference"
+             ROLYPOLY_BLESS=1 cargo test -p rolypoly-core --lib reference"
         );
         // And it is the default scene, every key written.
         assert_eq!(

@@ -16,8 +16,8 @@
 //! gives six linear equations in six unknowns per mode ([`grounded_solve`]).
 //! The same equations with impulses in place of forces resolve collisions:
 //! an impulse `J` at a point `Q` turns the tumbler about its contact point,
-//! `I_P dw = (Q - P) x J`, where `I_P` is the inertia about `P` (the report's
-//! "torque about the contact point").
+//! `I_P dw = (Q - P) x J`, where `I_P` is the inertia about `P` (the torque
+//! about the contact point).
 //!
 //! The bottom never lifts off: where the floor would have to pull it down
 //! (a violent spin, a hard knock from below), the floor holds it without

@@ -64,7 +64,7 @@ impl World {
         let grid = &self.grid;
         contacts.reset(grid.layer_count());
         grid.layer_slots(&mut contacts.layers);
-        // The impacts stage's pairs, picked out here while each is at hand.
+        // The impacts stage's pairs, picked out here while each pair is found.
         let due_bands = self.scratch.impacts.due_bands(grid.layer_count());
         let threshold = impact_threshold(&self.config);
         let find_pairs = |(z, ((band, slots), due)): (usize, BandOut)| {

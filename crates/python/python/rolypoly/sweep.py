@@ -10,10 +10,10 @@ without a scheduler of its own.
 ...                       {"balls.friction": [0.2, 0.8]}, seeds=[1, 2])
 
 On a cluster, hand it Dask's executor (``distributed.Client(address)
-.get_executor()``) or Ray's; by default it is a process pool on this
-machine. What goes to the workers is the scene (it pickles as its text),
-the overrides, the seed and ``function`` (pickled as the executor pickles
-functions: the standard library's pool wants one defined at a module's
+.get_executor()``) or Ray's; by default it is a process pool on the
+local machine. What goes to the workers is the scene (it pickles as its
+text), the overrides, the seed and ``function`` (pickled as the executor
+pickles functions: the standard library's pool wants one defined at a module's
 top level, Dask's and Ray's take any).
 """
 
@@ -63,7 +63,7 @@ def sweep(
     """Runs ``function(world)`` for every world made from ``scene`` with
     each combination of ``grid`` (scene keys to lists of values, as
     ``overrides`` takes them) and each seed, on ``executor`` (a process
-    pool on this machine when None).
+    pool on the local machine when None).
 
     Returns one row per run, in the order of the combinations and then
     the seeds: the grid's keys with their values, ``seed``, ``result``

@@ -1,4 +1,4 @@
-//! `rolypoly simulate` (SPEC A3): step a world (and its effects, as every
+//! `rolypoly simulate` (A3): step a world (and its effects, as every
 //! run steps them) a fixed number of steps without a window, optionally writing a trace, and summarise the result.
 
 use std::fmt;

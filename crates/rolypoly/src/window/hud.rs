@@ -148,7 +148,7 @@ const KEYS: [(&str, &str); 22] = [
     ("I", "re-initialise the balls"),
     (
         "O",
-        "orbit the body in the middle of the view (drag to turn, wheel to zoom), or fly again",
+        "orbit the body in the middle of the view (move the mouse to turn, wheel to zoom), or fly again",
     ),
     (
         "1 to 6",

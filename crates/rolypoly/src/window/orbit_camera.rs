@@ -1,5 +1,5 @@
 //! The orbit camera (O): it circles a point, a picked body or the room's
-//! centre, at a distance; dragging the mouse turns it, the wheel zooms.
+//! centre, at a distance; moving the mouse turns it, the wheel zooms.
 //!
 //! It takes over from the fly camera without a jump: it starts where the
 //! fly camera stands and looks the same way, circling the point on its

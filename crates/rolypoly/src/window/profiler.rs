@@ -1,4 +1,4 @@
-//! The profiler (F3): where a frame's time goes. The physics step's stages
+//! The profiler (key F3): where a frame's time goes. The physics step's stages
 //! (as the step names them, summed over the frame's steps) as a stacked bar
 //! per frame; the frame, the physics, the rendering on the CPU and the
 //! GPU's passes (by timestamp queries, where the adapter has them) plotted

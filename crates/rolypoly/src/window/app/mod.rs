@@ -61,7 +61,7 @@ pub struct WindowOptions {
     pub log_events: bool,
     /// The scene's seed, for the HUD.
     pub seed: u64,
-    /// Where F12 writes screenshots.
+    /// Where the F12 key writes screenshots.
     pub screenshot_dir: PathBuf,
     /// Walking speed (m/s).
     pub move_speed: f32,
@@ -158,7 +158,7 @@ struct App {
     sound: LiveSound,
     /// The time the last frame spent simulating, which its drawing did not.
     last_simulation: Duration,
-    /// The profiler (F3), and when the window opened (its plots' zero).
+    /// The profiler (key F3), and when the window opened (its plots' zero).
     profiler: Profiler,
     opened: Instant,
     /// The frames since the frame rate was last logged.
@@ -566,7 +566,7 @@ impl App {
         );
     }
 
-    /// F12: the current view, drawn off-screen at the window's size, as a PNG.
+    /// The F12 key: the current view, drawn off-screen at the window's size, as a PNG.
     fn screenshot(&mut self) -> anyhow::Result<()> {
         let Some(r) = &self.running else {
             return Ok(());
@@ -707,7 +707,7 @@ fn held_facts(world: &rolypoly_physics::World) -> Option<String> {
     ))
 }
 
-/// The time now in whole seconds since 1970, which names the files F12
+/// The time now in whole seconds since 1970, which names the files the F12 key
 /// and R write so that each run's files sort in order and do not collide.
 fn seconds_since_1970() -> u64 {
     std::time::SystemTime::now()
