@@ -13,14 +13,15 @@
 use std::path::{Path, PathBuf};
 use std::process::Command as Process;
 
+mod pages;
+
 use clap::Parser;
 use clap::error::ErrorKind;
 use glam::DVec3;
+use pages::{ROOT, pages};
 use rolypoly::cli::{Cli, Command};
 use rolypoly::sandbox::{SHIPPED_SCENES, Sandbox};
 use rolypoly::scene::parse_scene;
-
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
 
 /// How the program is run in every shown command.
 const RUN: &str = "cargo run --release --";
@@ -48,18 +49,6 @@ struct Shown {
     flags_only: Option<String>,
     /// The fenced block it is in (commands of one block share a folder).
     block: usize,
-}
-
-fn pages() -> Vec<PathBuf> {
-    let mut pages = vec![Path::new(ROOT).join("README.md")];
-    let mut docs: Vec<PathBuf> = std::fs::read_dir(Path::new(ROOT).join("docs"))
-        .expect("docs/ is readable")
-        .map(|e| e.expect("a docs/ entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "md"))
-        .collect();
-    docs.sort();
-    pages.extend(docs);
-    pages
 }
 
 /// A command line split into words as a POSIX shell would: quotes kept

@@ -10,10 +10,11 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use image::{AnimationDecoder, RgbaImage};
-use rolypoly_reference::compare;
+mod pages;
 
-const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+use image::{AnimationDecoder, RgbaImage};
+use pages::{ROOT, pages};
+use rolypoly_reference::compare;
 
 /// The most FLIP's mean error may be between a committed picture and the
 /// program's picture now. The same program on the same adapter draws the
@@ -167,15 +168,8 @@ fn shown_by(page: &Path) -> Vec<String> {
 fn every_picture_a_page_shows_is_listed_and_every_listed_one_exists() {
     let listed = listed();
     let names: Vec<&str> = listed.iter().map(|l| l.picture.as_str()).collect();
-    let mut pages = vec![Path::new(ROOT).join("README.md")];
-    for entry in std::fs::read_dir(Path::new(ROOT).join("docs")).expect("docs/") {
-        let path = entry.expect("a docs/ entry").path();
-        if path.extension().is_some_and(|e| e == "md") {
-            pages.push(path);
-        }
-    }
     let mut shown = Vec::new();
-    for page in &pages {
+    for page in &pages() {
         for picture in shown_by(page) {
             let clean = Path::new(&picture)
                 .components()
