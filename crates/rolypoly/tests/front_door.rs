@@ -53,7 +53,9 @@ fn stands_in(line: &str, word: &str) -> bool {
         let after = line[at + word.len()..].chars().next();
         let starts = word.starts_with(is_word);
         let ends = word.ends_with(is_word);
-        !(starts && before.is_some_and(is_word)) && !(ends && after.is_some_and(is_word))
+        let joined_before = starts && before.is_some_and(is_word);
+        let joined_after = ends && after.is_some_and(is_word);
+        !(joined_before || joined_after)
     })
 }
 
