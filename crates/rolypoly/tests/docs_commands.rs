@@ -249,15 +249,17 @@ fn repository_input(value: &str) -> String {
 /// outputs into the scratch folder, the repository's inputs read in place.
 fn shortened(args: &[String]) -> Vec<String> {
     let mut out = Vec::new();
-    let mut flag: Option<String> = None;
+    // The flag the next word may be the value of.
+    let mut flag: Option<&str> = None;
     for arg in args {
-        if let Some(f) = flag.take() {
-            out.push(shortened_value(&f, arg));
-        } else if let Some((f, v)) = arg.split_once('=').filter(|_| arg.starts_with("--")) {
+        if let Some((f, v)) = arg.split_once('=').filter(|_| arg.starts_with("--")) {
             out.push(format!("{f}={}", shortened_value(f, v)));
+            flag = None;
         } else if arg.starts_with("--") {
             out.push(arg.clone());
-            flag = Some(arg.clone());
+            flag = Some(arg);
+        } else if let Some(f) = flag.take() {
+            out.push(shortened_value(f, arg));
         } else {
             out.push(repository_input(arg));
         }
@@ -423,6 +425,12 @@ fn the_scan_reads_what_a_page_shows() {
     assert_eq!(
         shortened(&args("record --seconds 2.5 --out frames/")),
         args("record --seconds 1 --out frames/")
+    );
+    // A flag without a value before an output: the output still lands in
+    // the scratch folder, never on the repository's own file.
+    assert_eq!(
+        shortened(&args("record --fireball --out docs/clip.gif")),
+        args("record --fireball --out clip.gif")
     );
     let scene = shortened(&args("simulate --scene scenes/heap.toml"));
     assert!(scene[2].ends_with("/scenes/heap.toml") && Path::new(&scene[2]).is_absolute());
