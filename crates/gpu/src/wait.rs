@@ -17,38 +17,43 @@ pub const DEFAULT_GPU_TIMEOUT: Duration = Duration::from_secs(30);
 /// anywhere in it (a renderer's, the engine's, a clip's) has it.
 static PROGRAM_BOUND_NANOS: AtomicU64 = AtomicU64::new(DEFAULT_GPU_TIMEOUT.as_nanos() as u64);
 
-/// Whether a wait that runs out also arms [`exit_if_stuck`]: set by the
-/// program, not by a library's user, whose process is not ours to end.
+/// Whether a wait that runs out ends the program ([`end_program`]): set by
+/// the program, not by a library's user, whose process is not ours to end.
 static EXIT_WHEN_STUCK: AtomicBool = AtomicBool::new(false);
-
-/// How long the program has to end after a wait ran out, before it is
-/// ended anyway.
-const GRACE: Duration = Duration::from_secs(5);
 
 /// Sets the bound of every wait on the GPU from now on (`--gpu-timeout`),
 /// for a program that ends on the error: once a wait runs out, the program
-/// is ended within a few seconds even if letting go of the GPU hangs.
+/// prints it and ends there.
 pub fn set_program_gpu_timeout(limit: Duration) {
     let nanos = u64::try_from(limit.as_nanos()).unwrap_or(u64::MAX).max(1);
     PROGRAM_BOUND_NANOS.store(nanos, Ordering::Relaxed);
     EXIT_WHEN_STUCK.store(true, Ordering::Relaxed);
 }
 
-/// After a wait ran out the program unwinds to print `timeout`, and on the
-/// way drops its device and queue; wgpu waits for the GPU to go idle when
-/// a queue is dropped, with no bound. A GPU that stalled may never be idle,
-/// so a watchdog prints the error and ends the program if it is still
-/// running after [`GRACE`].
-fn exit_if_stuck(timeout: &GpuTimeout) {
+/// Ends a program whose wait ran out, with the error's one line and exit
+/// status 1, without letting go of the GPU. The GPU is still at work on
+/// what was given up on: dropping the device and queue waits for it to go
+/// idle with no bound (a stalled GPU never does), and freeing what it
+/// works on, or the driver's teardown at exit, while it runs can fault (a
+/// software Vulkan's worker threads did, now and then). So the process
+/// ends at once, skipping the exit handlers where the platform allows.
+fn end_program(timeout: &GpuTimeout) {
     if !EXIT_WHEN_STUCK.load(Ordering::Relaxed) {
         return;
     }
-    let message = timeout.to_string();
-    std::thread::spawn(move || {
-        std::thread::sleep(GRACE);
-        eprintln!("error: {message}");
-        std::process::exit(1);
-    });
+    use std::io::Write;
+    let mut stderr = std::io::stderr().lock();
+    let _ = writeln!(stderr, "error: {timeout}");
+    let _ = stderr.flush();
+    let _ = std::io::stdout().flush();
+    #[cfg(unix)]
+    // SAFETY: `_exit` ends the process without running anything else;
+    // what had to be written is flushed above.
+    unsafe {
+        libc::_exit(1)
+    };
+    #[cfg(not(unix))]
+    std::process::exit(1);
 }
 
 /// The bound new waits start with: [`DEFAULT_GPU_TIMEOUT`] unless
@@ -128,7 +133,7 @@ impl WaitBound {
                     adapter: self.adapter.clone(),
                     bound: self.limit,
                 };
-                exit_if_stuck(&timeout);
+                end_program(&timeout);
                 Err(WaitError::Timeout(timeout))
             }
             Err(e) => Err(WaitError::Failed {
