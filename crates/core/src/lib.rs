@@ -12,6 +12,7 @@ pub mod engine;
 pub mod frames;
 pub mod progress;
 pub mod scene;
+pub mod series;
 pub mod simulation;
 pub mod snapshot;
 pub mod sound;

@@ -17,6 +17,7 @@ mod progress;
 mod render;
 mod run;
 mod scene;
+mod series;
 mod sound;
 mod trace;
 mod tumblers;

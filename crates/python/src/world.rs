@@ -19,6 +19,7 @@ use crate::events::Event;
 use crate::progress::Progress;
 use crate::run::{MakeError, Run, Saved};
 use crate::scene::Scene;
+use crate::series;
 use crate::trace::write_trace;
 use crate::tumblers::{Fireball, Tumblers};
 
@@ -378,6 +379,35 @@ impl World {
     /// every ``every`` steps and at the last, each with the events since
     /// the one before. From a new world the file is byte for byte the
     /// program's. The events also stay for :meth:`events`.
+    /// Steps the world ``steps`` times and gives its totals as ``rolypoly
+    /// simulate --series FILE --steps STEPS --series-every EVERY`` writes
+    /// them: the state now, then every ``every`` steps and at the last. A
+    /// dict of column name to a float64 array, one value a sample, in the
+    /// order ``step``, ``time``, ``kinetic_translational``,
+    /// ``kinetic_rotational``, ``potential``, ``total``, ``momentum_x``,
+    /// ``momentum_y``, ``momentum_z``, ``contacts``, ``impacts``, then
+    /// ``tumbler_K_tilt`` a tumbler; with ``frame=True``, a pandas
+    /// DataFrame of the same columns.
+    #[pyo3(signature = (steps, every=1, frame=false))]
+    fn series<'py>(
+        &mut self,
+        py: Python<'py>,
+        steps: i64,
+        every: i64,
+        frame: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let steps = u64::try_from(steps)
+            .map_err(|_| value_error(format!("steps = {steps}: cannot be negative")))?;
+        let every = u64::try_from(every)
+            .ok()
+            .filter(|&e| e >= 1)
+            .ok_or_else(|| value_error(format!("every = {every}: give 1 or more")))?;
+        let run = &mut self.run;
+        let samples = py.detach(|| series::samples(run, steps, every))?;
+        let tumblers = self.run.sim.world.tumblers().len();
+        series::to_python(py, &samples, tumblers, frame)
+    }
+
     #[pyo3(signature = (path, steps, every=1))]
     fn write_trace(
         &mut self,

@@ -674,6 +674,23 @@ pub struct SimulateArgs {
     /// Launch the fireball from the scene's spawn point before the first step.
     #[arg(long)]
     pub fireball: bool,
+
+    /// Write the run's totals to FILE as CSV: a line at step 0, then every
+    /// N steps (`--series-every`) and at the last step, with the energy in
+    /// its parts, the momentum, the contacts and impacts, and each
+    /// tumbler's tilt (the columns in docs/using.md).
+    #[arg(long, value_name = "FILE.csv")]
+    pub series: Option<PathBuf>,
+
+    /// Write a series line every N steps (N >= 1).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1,
+        requires = "series",
+        value_parser = clap::value_parser!(u64).range(1..)
+    )]
+    pub series_every: u64,
 }
 
 /// How long to simulate: exactly one of the two.

@@ -20,7 +20,7 @@ pub mod window;
 
 // The scene and the run are the library's; the program's own paths to
 // them (`crate::scene`, ...) lead there.
-pub use rolypoly_core::{clip, engine, frames, progress, scene, simulation, sound, trace};
+pub use rolypoly_core::{clip, engine, frames, progress, scene, series, simulation, sound, trace};
 
 use std::io;
 

@@ -10,8 +10,10 @@ use rolypoly_gpu::{Compute, GpuBalls};
 use rolypoly_physics::{EventKind, World};
 
 use crate::cli::{SimulateArgs, steps_for};
+use crate::series::{self, Sample, SeriesWriter};
 use crate::simulation::Simulation;
 use crate::trace::{self, TraceWriter, event_kind_name};
+use std::fs::File;
 
 /// `rolypoly simulate` on `sim`: its steps, a trace if asked for, and
 /// the summary. With `gpu`, its balls are stepped by the GPU engine on the
@@ -28,6 +30,14 @@ pub fn simulate(
     // balls as the scene made them, on either engine: the GPU engine keeps
     // them in single precision.
     let mut writer = args.trace.as_deref().map(trace::create).transpose()?;
+    // The series file is opened before the run, so that a folder that is
+    // not there is named before any time is spent.
+    let tumblers = sim.world.tumblers().len();
+    let mut series = args
+        .series
+        .as_deref()
+        .map(|path| series::create(path, tumblers))
+        .transpose()?;
     if let Some(writer) = writer.as_mut() {
         writer.scene(&sim.world, seed)?;
     }
@@ -48,6 +58,7 @@ pub fn simulate(
         fireball: args.fireball,
         seed,
         every: args.every,
+        series_every: args.series_every,
     };
     match (&args.trace, writer) {
         (Some(path), Some(mut writer)) => {
@@ -57,8 +68,12 @@ pub fn simulate(
                 scene_name,
                 &options,
                 Some(&mut writer),
+                series.as_mut(),
             )?;
             writer.finish()?;
+            if let Some(series) = series {
+                series.finish()?;
+            }
             // Standard output carries the trace itself; keep it pure JSON Lines.
             if trace::is_stdout(path) {
                 Ok(())
@@ -67,7 +82,17 @@ pub fn simulate(
             }
         }
         _ => {
-            let summary = run::<io::Sink>(&mut sim, balls.as_mut(), scene_name, &options, None)?;
+            let summary = run::<io::Sink>(
+                &mut sim,
+                balls.as_mut(),
+                scene_name,
+                &options,
+                None,
+                series.as_mut(),
+            )?;
+            if let Some(series) = series {
+                series.finish()?;
+            }
             print_summary(&summary)
         }
     }
@@ -94,6 +119,8 @@ pub struct Options {
     pub seed: u64,
     /// A state line every this many steps (at least 1).
     pub every: u64,
+    /// A series line every this many steps (at least 1).
+    pub series_every: u64,
 }
 
 /// Event kinds in the order the summary lists them.
@@ -143,13 +170,15 @@ fn event_index(kind: &EventKind) -> usize {
 /// the balls on `gpu` where given, the effects). With a trace (whose scene
 /// line is written), writes the state at step 0, then every
 /// `options.every` steps and at the last step, each state line carrying
-/// the events since the previous one.
+/// the events since the previous one; with a series, its line at step 0,
+/// every `options.series_every` steps and at the last step.
 pub fn run<W: Write>(
     sim: &mut Simulation,
     mut gpu: Option<&mut GpuBalls>,
     scene: &str,
     options: &Options,
     mut trace: Option<&mut TraceWriter<W>>,
+    mut series: Option<&mut SeriesWriter<File>>,
 ) -> anyhow::Result<Summary> {
     let started = Instant::now();
     let every = options.every.max(1);
@@ -161,6 +190,12 @@ pub fn run<W: Write>(
             trace.state(world, &[])
         })??;
     }
+    if let Some(series) = series.as_deref_mut() {
+        with_balls(&mut sim.world, gpu.as_deref(), |world| {
+            series.sample(&Sample::of(world, &[]))
+        })??;
+    }
+    let series_every = options.series_every.max(1);
 
     let mut events = [0u64; 6];
     let mut pending = Vec::new();
@@ -169,6 +204,14 @@ pub fn run<W: Write>(
         pending.extend_from_slice(sim.last_events());
         for event in &pending {
             events[event_index(&event.kind)] += 1;
+        }
+        if let Some(series) = series.as_deref_mut()
+            && (step % series_every == 0 || step == options.steps)
+        {
+            let last = sim.last_events().to_vec();
+            with_balls(&mut sim.world, gpu.as_deref(), |world| {
+                series.sample(&Sample::of(world, &last))
+            })??;
         }
         match trace.as_deref_mut() {
             Some(trace) => {

@@ -1,0 +1,53 @@
+"""World.series against `simulate --series`: the same numbers, a DataFrame
+where pandas is, and the physics the columns plot."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import rolypoly
+from conftest import SCENES, run_bin
+
+
+@pytest.mark.parametrize("scene_file,seed,steps,every", [
+    (None, 1, 40, 1),
+    (None, 5, 33, 10),
+    ("elastic-gas.toml", 2, 30, 7),
+])
+def test_the_series_is_the_programs_number_for_number(tmp_path, scene_file, seed, steps, every):
+    out = tmp_path / "run.csv"
+    args = ["simulate", "--steps", str(steps), "--seed", str(seed),
+            "--series", str(out), "--series-every", str(every)]
+    scene = rolypoly.Scene.default()
+    if scene_file:
+        args += ["--scene", str(SCENES / scene_file)]
+        scene = rolypoly.Scene.load(SCENES / scene_file)
+    run_bin(*args)
+    program = pd.read_csv(out, float_precision="round_trip")
+    series = rolypoly.World(scene, seed=seed).series(steps, every=every)
+    assert list(series) == list(program.columns)
+    for name, values in series.items():
+        assert values.dtype == np.float64
+        np.testing.assert_array_equal(values, program[name].to_numpy(dtype=np.float64), err_msg=name)
+
+
+def test_a_frame_has_the_columns_and_a_row_a_sample():
+    frame = rolypoly.World(seed=3).series(20, every=5, frame=True)
+    assert isinstance(frame, pd.DataFrame)
+    assert list(frame["step"]) == [0, 5, 10, 15, 20]
+    assert [c for c in frame.columns if c.endswith("_tilt")] == [f"tumbler_{k}_tilt" for k in range(5)]
+    parts = frame["kinetic_translational"] + frame["kinetic_rotational"] + frame["potential"]
+    np.testing.assert_allclose(parts, frame["total"], rtol=1e-12)
+
+
+def test_the_series_total_is_the_worlds_energy():
+    world = rolypoly.World(seed=4)
+    series = world.series(60)
+    assert series["total"][-1] == pytest.approx(world.energy().total, rel=1e-12)
+    assert np.all(np.diff(series["total"]) <= 1e-9 * series["total"][0])
+
+
+@pytest.mark.parametrize("steps,every", [(-1, 1), (10, 0), (10, -2)])
+def test_bad_lengths_are_value_errors(steps, every):
+    with pytest.raises(ValueError):
+        rolypoly.World().series(steps, every=every)
