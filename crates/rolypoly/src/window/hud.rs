@@ -126,7 +126,7 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 22] = [
+const KEYS: [(&str, &str); 23] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
@@ -155,6 +155,10 @@ const KEYS: [(&str, &str); 22] = [
         "debug views: contacts, impulses, velocities, grid, rest, centre of mass",
     ),
     ("F3", "profiler: the step's stages and the frame's passes"),
+    (
+        "F4",
+        "plots: energy, momentum, contacts, a tumbler's tilt beside theory; export CSV",
+    ),
     ("M", "mute the sound / play it again"),
     ("H or F1", "this help"),
     ("F12", "screenshot (PNG)"),

@@ -9,6 +9,7 @@ mod hud;
 mod log;
 mod orbit_camera;
 mod panel;
+mod plots;
 mod profiler;
 mod quality;
 mod sound;

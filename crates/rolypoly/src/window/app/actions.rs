@@ -29,6 +29,21 @@ impl App {
         }
     }
 
+    /// Writes the plots' samples to `path` as `simulate --series` does, and
+    /// says where (or why not: the program goes on).
+    pub(super) fn export_plots(&mut self, path: &std::path::Path) {
+        match self.plots.export(path) {
+            Ok(()) => {
+                self.log.say(
+                    "series_exported",
+                    json!({ "path": path.display().to_string() }),
+                );
+                self.tell(format!("series written to {}", path.display()));
+            }
+            Err(e) => self.tell(format!("{e}: {}", e.source)),
+        }
+    }
+
     /// Shows `message` on the HUD and in the panel for a few seconds.
     pub(super) fn tell(&mut self, message: String) {
         self.log.say("message", json!({ "text": message }));

@@ -183,6 +183,10 @@ impl App {
             }
             KeyCode::KeyI => self.restart(),
             KeyCode::KeyO => self.toggle_orbit(),
+            KeyCode::F4 => {
+                self.plots.open = !self.plots.open;
+                self.log.say("plots", json!({ "open": self.plots.open }));
+            }
             KeyCode::F3 => {
                 self.profiler.open = !self.profiler.open;
                 self.log

@@ -30,6 +30,7 @@ use super::hud::{Hud, HudState};
 use super::log::EventLog;
 use super::orbit_camera::OrbitCamera;
 use super::panel::Panel;
+use super::plots::Plots;
 use super::profiler::{FrameProfile, Profiler};
 use super::quality::{QualityChange, WindowQuality};
 use super::sound::LiveSound;
@@ -160,6 +161,8 @@ struct App {
     last_simulation: Duration,
     /// The profiler (key F3), and when the window opened (its plots' zero).
     profiler: Profiler,
+    /// The plots of the run's totals (key F4).
+    plots: Plots,
     opened: Instant,
     /// The frames since the frame rate was last logged.
     frame_rate: FrameRate,
@@ -214,6 +217,7 @@ impl App {
             sound: LiveSound::open(&sandbox.scene().sound, &sandbox.sim),
             last_simulation: Duration::ZERO,
             profiler: Profiler::default(),
+            plots: Plots::default(),
             opened: Instant::now(),
             frame_rate: FrameRate::default(),
             sandbox,
@@ -296,6 +300,10 @@ impl App {
             self.record_camera();
         }
 
+        if self.plots.open {
+            let sim = &self.sandbox.sim;
+            self.plots.record(&sim.world, sim.last_events());
+        }
         let sim = &self.sandbox.sim;
         let view = sim.view_showing(&self.sandbox.scene().light, &self.panel.debug);
         let camera = self.camera.camera();
@@ -368,6 +376,8 @@ impl App {
         let balls = view.balls.len();
         let debug = self.panel.debug;
         let (panel, sandbox, profiler) = (&mut self.panel, &mut self.sandbox, &self.profiler);
+        let (plots, folder) = (&mut self.plots, &self.options.screenshot_dir);
+        let mut export = None;
         let mut action = None;
         let hud_started = Instant::now();
         let painted = r
@@ -375,6 +385,7 @@ impl App {
             .draw(&r.window, &r.gpu, &target, [w, h], &self.hud_state, |ui| {
                 action = panel.show(ui, sandbox);
                 profiler.show(ui.ctx());
+                export = plots.show(ui.ctx(), folder);
                 crate::legend::show(ui.ctx(), &debug);
             });
         let ui = hud_started.elapsed().saturating_sub(painted.submit);
@@ -403,6 +414,9 @@ impl App {
             balls,
         });
         self.count_frame(elapsed, parts);
+        if let Some(path) = export {
+            self.export_plots(&path);
+        }
         if let Some(action) = action {
             self.act(action);
         }
