@@ -60,8 +60,8 @@ pub struct Sample {
     /// Linear momentum of the balls and tumblers (kg m/s). The fireball,
     /// which flies at a set speed whatever it meets, is left out.
     pub momentum: DVec3,
-    /// Contacts the step's solver pushed at (ball pairs, balls on walls and
-    /// tumblers, tumblers on the floor).
+    /// Contacts the step's solver worked on: ball pairs, balls on walls
+    /// and on tumblers (its rows, as the profiler counts them).
     pub contacts: usize,
     /// Impacts the step reported (its events).
     pub impacts: usize,
@@ -86,7 +86,10 @@ impl Sample {
             rotational: 0.0,
             potential: 0.0,
             momentum: DVec3::ZERO,
-            contacts: world.contact_probes().len(),
+            contacts: {
+                let times = world.step_times();
+                times.pairs + times.other_contacts
+            },
             impacts: events.len(),
             surface_impacts: events
                 .iter()

@@ -36,7 +36,7 @@ const MOST_TIME: f64 = 3.0;
 const MOST_SPP: u32 = 4;
 
 /// The flags whose value is a file the command writes.
-const OUTPUT_FLAGS: [&str; 3] = ["--out", "--trace", "--hdr"];
+const OUTPUT_FLAGS: [&str; 5] = ["--out", "--trace", "--hdr", "--series", "--audio"];
 
 /// A command shown on a page.
 #[derive(Debug)]

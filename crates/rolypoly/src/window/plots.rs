@@ -8,7 +8,7 @@
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 
-use egui_plot::{Legend, Line, Plot, VLine};
+use egui_plot::{Corner, Legend, Line, Plot, VLine};
 use rolypoly_core::series::{Sample, SeriesError, SeriesWriter};
 use rolypoly_physics::{Event, World};
 
@@ -73,6 +73,7 @@ impl Plots {
     }
 
     /// The samples kept, oldest first.
+    #[cfg(test)]
     pub fn samples(&self) -> impl Iterator<Item = &Sample> {
         self.samples.iter()
     }
@@ -124,7 +125,7 @@ impl Plots {
             .find(|s| s.step <= self.now)
             .map_or(0.0, |s| s.time);
         egui::Window::new("plots (F4)")
-            .default_width(420.0)
+            .default_width(460.0)
             .show(ctx, |ui| {
                 let cursor = || VLine::new("now", now_time).color(egui::Color32::GRAY);
                 ui.label("Energy (J)");
@@ -145,7 +146,7 @@ impl Plots {
                 ui.label("Linear momentum (kg m/s): gravity and the room's surfaces change it");
                 Plot::new("momentum")
                     .height(90.0)
-                    .legend(Legend::default())
+                    .legend(Legend::default().position(Corner::LeftTop))
                     .show(ui, |plot| {
                         for (name, k) in [("x", 6), ("y", 7), ("z", 8)] {
                             plot.line(self.line(name, k));
@@ -155,7 +156,7 @@ impl Plots {
                 ui.label("A step's contacts and impacts");
                 Plot::new("counts")
                     .height(80.0)
-                    .legend(Legend::default())
+                    .legend(Legend::default().position(Corner::LeftTop))
                     .show(ui, |plot| {
                         for (name, k) in [("contacts", 9), ("impacts", 10), ("on surfaces", 11)] {
                             plot.line(self.line(name, k));
@@ -181,7 +182,7 @@ impl Plots {
                     let k = self.tumbler;
                     Plot::new("tilt")
                         .height(90.0)
-                        .legend(Legend::default())
+                        .legend(Legend::default().position(Corner::LeftTop))
                         .show(ui, |plot| {
                             plot.line(self.line("simulated", 12 + k));
                             if let Some(swing) = self.last_swing(k) {

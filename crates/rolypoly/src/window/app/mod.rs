@@ -251,10 +251,19 @@ impl App {
         let skipped_before = self.sandbox.playback.skipped();
         self.sound
             .follow(&self.camera.camera(), &self.sandbox.scene().sound);
-        let sound = &mut self.sound;
-        let steps = self
-            .sandbox
-            .frame_heard(elapsed, || started.elapsed(), |sim| sound.hear(sim));
+        let (sound, plots) = (&mut self.sound, &mut self.plots);
+        let steps = self.sandbox.frame_heard(
+            elapsed,
+            || started.elapsed(),
+            |sim| {
+                sound.hear(sim);
+                // Every step, not every frame: a frame of a slow window
+                // spans many steps, and a tumbler's swing would alias.
+                if plots.open {
+                    plots.record(&sim.world, sim.last_events());
+                }
+            },
+        );
         if !self.sandbox.playback.frozen() {
             let simulated = elapsed * self.sandbox.playback.scale();
             let skipped = self.sandbox.playback.skipped() - skipped_before;
@@ -301,6 +310,7 @@ impl App {
         }
 
         if self.plots.open {
+            // Moves the cursor after going back, which takes no step.
             let sim = &self.sandbox.sim;
             self.plots.record(&sim.world, sim.last_events());
         }
