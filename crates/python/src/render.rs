@@ -74,6 +74,33 @@ pub fn render<'py>(
     PyArray1::from_vec(py, image.into_raw()).reshape([height, width, 4])
 }
 
+/// `world` drawn as :func:`render` draws it by default (640x360, the
+/// overview), as PNG bytes: what a notebook shows for a world. None where
+/// there is no graphics adapter to draw with, so that the notebook shows
+/// the world's text instead.
+pub fn png(py: Python<'_>, world: &Bound<'_, World>) -> PyResult<Option<Vec<u8>>> {
+    let options = FrameOptions::read((640, 360), None, None, None)?;
+    let world = world.try_borrow()?;
+    let run = &world.run;
+    let held = held_balls(run)?;
+    let sim = held.as_ref().unwrap_or(&run.sim);
+    let Ok(image) = py.detach(|| {
+        with_frames(run, &options, |frames, light, camera| {
+            frames.draw_from(sim, light, camera)
+        })
+    }) else {
+        return Ok(None);
+    };
+    let mut bytes = Vec::new();
+    image
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
+        .map_err(|e| value_error(format!("cannot encode the frame as PNG: {e}")))?;
+    Ok(Some(bytes))
+}
+
 /// How frames are drawn, as ``render`` and ``record`` take it.
 pub struct FrameOptions {
     pub size: (u32, u32),

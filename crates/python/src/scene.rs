@@ -244,6 +244,56 @@ impl Scene {
         self.data.quality.name()
     }
 
+    /// The scene as a table in a notebook: what it holds, then each key
+    /// it sets apart from the default scene with its value.
+    fn _repr_html_(&self) -> String {
+        let world = &self.data.world;
+        let size = world.room.size;
+        let rows = vec![
+            ("scene".to_owned(), self.name.clone()),
+            ("balls".to_owned(), world.balls.total().to_string()),
+            (
+                "tumblers".to_owned(),
+                world.tumblers.placements.len().to_string(),
+            ),
+            (
+                "room (m)".to_owned(),
+                format!("{} x {} x {}", size.x, size.y, size.z),
+            ),
+            ("gravity (m/s²)".to_owned(), world.gravity.to_string()),
+            ("dt (s)".to_owned(), world.solver.dt.to_string()),
+            ("engine".to_owned(), self.data.engine.name().to_owned()),
+        ];
+        let mut set = Vec::new();
+        if let Ok(table) = toml::from_str::<toml::Table>(&self.text()) {
+            flatten("", &table, &mut set);
+        }
+        let escape = |text: &str| {
+            text.replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('>', "&gt;")
+        };
+        let mut html = String::from("<table>");
+        for (key, value) in &rows {
+            html += &format!(
+                "<tr><th>{}</th><td>{}</td></tr>",
+                escape(key),
+                escape(value)
+            );
+        }
+        if !set.is_empty() {
+            html += "<tr><th colspan=\"2\">keys set apart from the default scene</th></tr>";
+            for (key, value) in set.drain(..) {
+                html += &format!(
+                    "<tr><td><code>{}</code></td><td><code>{}</code></td></tr>",
+                    escape(&key),
+                    escape(&value)
+                );
+            }
+        }
+        html + "</table>"
+    }
+
     fn __repr__(&self) -> String {
         let world = &self.data.world;
         format!(
@@ -259,6 +309,22 @@ impl Scene {
             world.solver.dt,
             self.data.engine.name()
         )
+    }
+}
+
+/// Each key of `table` under `prefix` as a dotted name and its value's
+/// text, tables opened, in order.
+fn flatten(prefix: &str, table: &toml::Table, into: &mut Vec<(String, String)>) {
+    for (key, value) in table {
+        let name = if prefix.is_empty() {
+            key.clone()
+        } else {
+            format!("{prefix}.{key}")
+        };
+        match value {
+            toml::Value::Table(inner) => flatten(&name, inner, into),
+            other => into.push((name, other.to_string())),
+        }
     }
 }
 

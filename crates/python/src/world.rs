@@ -426,6 +426,16 @@ impl World {
         py.detach(|| write_trace(run, &path, steps, every))
     }
 
+    /// The world's frame in a notebook (Jupyter's rich display): what
+    /// :func:`render` draws by default, as PNG; nothing without a graphics
+    /// adapter, where the notebook shows the text instead.
+    fn _repr_png_<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Option<Bound<'py, PyBytes>>> {
+        Ok(crate::render::png(py, slf)?.map(|bytes| PyBytes::new(py, &bytes)))
+    }
+
     fn __repr__(&self) -> String {
         let run = &self.run;
         let world = &run.sim.world;

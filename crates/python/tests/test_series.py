@@ -51,3 +51,27 @@ def test_the_series_total_is_the_worlds_energy():
 def test_bad_lengths_are_value_errors(steps, every):
     with pytest.raises(ValueError):
         rolypoly.World().series(steps, every=every)
+
+
+def test_a_world_shows_its_frame_as_png_and_a_scene_its_keys():
+    world = rolypoly.World(seed=2)
+    png = world._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    # The frame render() draws, as PNG.
+    from conftest import read_png
+    import tempfile, pathlib
+    with tempfile.TemporaryDirectory() as folder:
+        path = pathlib.Path(folder) / "frame.png"
+        path.write_bytes(png)
+        np.testing.assert_array_equal(read_png(path), rolypoly.render(world))
+    html = rolypoly.Scene.default({"balls.count": 7, "gravity": 3.5})._repr_html_()
+    assert html.startswith("<table>") and "<code>balls.count</code>" in html and "<code>7</code>" in html
+    assert "<code>gravity</code>" in html and "3.5" in html
+
+
+def test_a_clip_plays_inline_as_a_gif_and_saves(tmp_path):
+    clip = rolypoly.clip(rolypoly.World(seed=1), seconds=0.4, fps=5, size=(64, 36))
+    assert clip.frames == 2 and clip.gif[:6] == b"GIF89a"
+    assert clip._repr_html_().startswith('<img src="data:image/gif;base64,')
+    clip.save(tmp_path / "c.gif")
+    assert (tmp_path / "c.gif").read_bytes() == clip.gif

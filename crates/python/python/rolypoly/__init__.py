@@ -29,11 +29,13 @@ from ._rolypoly import (
     render,
     sound,
 )
+from .notebook import Clip, clip
 from .sweep import sweep
 
 __all__ = [
     "MAX_PENDING_EVENTS",
     "Balls",
+    "Clip",
     "DeviceError",
     "Energy",
     "Event",
@@ -43,6 +45,7 @@ __all__ = [
     "Tumblers",
     "World",
     "angle_of_repose",
+    "clip",
     "overview_camera",
     "record",
     "render",
