@@ -151,29 +151,11 @@ impl Sample {
         .collect()
     }
 
-    /// One CSV line, without its line end.
+    /// One CSV line, without its line end. A whole number (a step, a
+    /// count) is written without a fraction: `10`, not `10.0`.
     pub fn csv_line(&self) -> String {
-        let m = self.momentum;
-        let mut line = format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{}",
-            self.step,
-            self.time,
-            self.translational,
-            self.rotational,
-            self.potential,
-            self.total(),
-            m.x,
-            m.y,
-            m.z,
-            self.contacts,
-            self.impacts,
-            self.surface_impacts
-        );
-        for tilt in &self.tilts {
-            line.push(',');
-            line.push_str(&tilt.to_string());
-        }
-        line
+        let values: Vec<String> = self.values().iter().map(f64::to_string).collect();
+        values.join(",")
     }
 }
 

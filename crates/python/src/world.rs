@@ -396,12 +396,7 @@ impl World {
         every: i64,
         frame: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let steps = u64::try_from(steps)
-            .map_err(|_| value_error(format!("steps = {steps}: cannot be negative")))?;
-        let every = u64::try_from(every)
-            .ok()
-            .filter(|&e| e >= 1)
-            .ok_or_else(|| value_error(format!("every = {every}: give 1 or more")))?;
+        let (steps, every) = steps_and_every(steps, every)?;
         let run = &mut self.run;
         let samples = py.detach(|| series::samples(run, steps, every))?;
         let tumblers = self.run.sim.world.tumblers().len();
@@ -416,12 +411,7 @@ impl World {
         steps: i64,
         every: i64,
     ) -> PyResult<()> {
-        let steps = u64::try_from(steps)
-            .map_err(|_| value_error(format!("steps = {steps}: cannot be negative")))?;
-        let every = u64::try_from(every)
-            .ok()
-            .filter(|&e| e >= 1)
-            .ok_or_else(|| value_error(format!("every = {every}: give 1 or more")))?;
+        let (steps, every) = steps_and_every(steps, every)?;
         let run = &mut self.run;
         py.detach(|| write_trace(run, &path, steps, every))
     }
@@ -558,4 +548,16 @@ impl Snapshot {
             self.steps()
         )
     }
+}
+
+/// A run's length and spacing as Python gave them, checked: `steps` not
+/// negative, `every` at least 1.
+fn steps_and_every(steps: i64, every: i64) -> PyResult<(u64, u64)> {
+    let steps = u64::try_from(steps)
+        .map_err(|_| value_error(format!("steps = {steps}: cannot be negative")))?;
+    let every = u64::try_from(every)
+        .ok()
+        .filter(|&e| e >= 1)
+        .ok_or_else(|| value_error(format!("every = {every}: give 1 or more")))?;
+    Ok((steps, every))
 }

@@ -9,7 +9,7 @@ use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 
 use egui_plot::{Corner, Legend, Line, Plot, VLine};
-use rolypoly_core::series::{Sample, SeriesError, SeriesWriter};
+use rolypoly_core::series::{FIXED_COLUMNS, Sample, SeriesError, SeriesWriter};
 use rolypoly_physics::{Event, World};
 
 /// How much simulated time the plots keep (s).
@@ -128,41 +128,43 @@ impl Plots {
             .default_width(460.0)
             .show(ctx, |ui| {
                 let cursor = || VLine::new("now", now_time).color(egui::Color32::GRAY);
-                ui.label("Energy (J)");
-                Plot::new("energy")
-                    .height(110.0)
-                    .legend(Legend::default())
-                    .show(ui, |plot| {
-                        for (name, k) in [
-                            ("translational", 2),
-                            ("rotational", 3),
-                            ("potential", 4),
-                            ("total", 5),
-                        ] {
-                            plot.line(self.line(name, k));
-                        }
-                        plot.vline(cursor());
-                    });
-                ui.label("Linear momentum (kg m/s): gravity and the room's surfaces change it");
-                Plot::new("momentum")
-                    .height(90.0)
-                    .legend(Legend::default().position(Corner::LeftTop))
-                    .show(ui, |plot| {
-                        for (name, k) in [("x", 6), ("y", 7), ("z", 8)] {
-                            plot.line(self.line(name, k));
-                        }
-                        plot.vline(cursor());
-                    });
-                ui.label("A step's contacts and impacts");
-                Plot::new("counts")
-                    .height(80.0)
-                    .legend(Legend::default().position(Corner::LeftTop))
-                    .show(ui, |plot| {
-                        for (name, k) in [("contacts", 9), ("impacts", 10), ("on surfaces", 11)] {
-                            plot.line(self.line(name, k));
-                        }
-                        plot.vline(cursor());
-                    });
+                self.columns_plot(
+                    ui,
+                    "Energy (J)",
+                    110.0,
+                    Corner::RightTop,
+                    &[
+                        ("translational", "kinetic_translational"),
+                        ("rotational", "kinetic_rotational"),
+                        ("potential", "potential"),
+                        ("total", "total"),
+                    ],
+                    now_time,
+                );
+                self.columns_plot(
+                    ui,
+                    "Linear momentum (kg m/s): gravity and the room's surfaces change it",
+                    90.0,
+                    Corner::LeftTop,
+                    &[
+                        ("x", "momentum_x"),
+                        ("y", "momentum_y"),
+                        ("z", "momentum_z"),
+                    ],
+                    now_time,
+                );
+                self.columns_plot(
+                    ui,
+                    "A step's contacts and impacts",
+                    80.0,
+                    Corner::LeftTop,
+                    &[
+                        ("contacts", "contacts"),
+                        ("impacts", "impacts"),
+                        ("on surfaces", "surface_impacts"),
+                    ],
+                    now_time,
+                );
                 let tumblers = self.samples.back().map_or(0, |s| s.tilts.len());
                 if tumblers > 0 {
                     ui.horizontal(|ui| {
@@ -184,7 +186,7 @@ impl Plots {
                         .height(90.0)
                         .legend(Legend::default().position(Corner::LeftTop))
                         .show(ui, |plot| {
-                            plot.line(self.line("simulated", 12 + k));
+                            plot.line(self.line("simulated", FIXED_COLUMNS.len() + k));
                             if let Some(swing) = self.last_swing(k) {
                                 let theory: Vec<[f64; 2]> = self
                                     .samples
@@ -202,6 +204,33 @@ impl Plots {
                 }
             });
         export
+    }
+
+    /// A plot titled `title` of the series' `columns` (legend name, column),
+    /// with the cursor at `now`.
+    fn columns_plot(
+        &self,
+        ui: &mut egui::Ui,
+        title: &'static str,
+        height: f32,
+        legend: Corner,
+        columns: &[(&'static str, &str)],
+        now: f64,
+    ) {
+        ui.label(title);
+        Plot::new(title)
+            .height(height)
+            .legend(Legend::default().position(legend))
+            .show(ui, |plot| {
+                for (name, column) in columns {
+                    let k = FIXED_COLUMNS
+                        .iter()
+                        .position(|c| c == column)
+                        .expect("a series column");
+                    plot.line(self.line(name, k));
+                }
+                plot.vline(VLine::new("now", now).color(egui::Color32::GRAY));
+            });
     }
 
     /// Column `k` of the samples against their time.
