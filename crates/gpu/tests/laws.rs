@@ -28,17 +28,13 @@ fn larger_pits_of_balls_settle_without_overlap_or_escape() {
 
 /// Without friction between balls nothing but their contacts takes a
 /// pile's trembling out: where the solver's sweeps leave its pushes
-/// unsolved (its blocks' edges), it never comes to rest.
-#[test]
-fn a_frictionless_pit_comes_to_rest() {
-    pits_settle(&[(1100, 2)], 0.0, 0.98);
-}
-
-/// The same law for more balls and other seeds.
+/// unsolved (its blocks' edges), it never comes to rest. A frictionless
+/// pile steps slowest of all on a software Vulkan (0.5 steps/s at 1 100
+/// balls on two cores), so this law runs on a GPU only.
 #[test]
 #[ignore = "tens of minutes on a software Vulkan; scripts/gpu-check runs it on a GPU"]
-fn larger_frictionless_pits_come_to_rest() {
-    pits_settle(&[(2500, 4), (4000, 5), (20000, 13)], 0.0, 0.98);
+fn frictionless_pits_come_to_rest() {
+    pits_settle(&[(2500, 2), (4000, 5), (20000, 13)], 0.0, 0.98);
 }
 
 /// Each pit of `(balls, seed)` with ball-on-ball friction `friction`
