@@ -373,19 +373,14 @@ impl World {
         ))
     }
 
-    /// Steps the world ``steps`` times, writing a JSON Lines trace to
-    /// ``path`` as ``rolypoly simulate --trace PATH --steps STEPS --every
-    /// EVERY`` writes it: the scene line, the state now, then a state line
-    /// every ``every`` steps and at the last, each with the events since
-    /// the one before. From a new world the file is byte for byte the
-    /// program's. The events also stay for :meth:`events`.
     /// Steps the world ``steps`` times and gives its totals as ``rolypoly
     /// simulate --series FILE --steps STEPS --series-every EVERY`` writes
     /// them: the state now, then every ``every`` steps and at the last. A
     /// dict of column name to a float64 array, one value a sample, in the
     /// order ``step``, ``time``, ``kinetic_translational``,
     /// ``kinetic_rotational``, ``potential``, ``total``, ``momentum_x``,
-    /// ``momentum_y``, ``momentum_z``, ``contacts``, ``impacts``, then
+    /// ``momentum_y``, ``momentum_z``, ``contacts``, ``impacts``,
+    /// ``surface_impacts``, then
     /// ``tumbler_K_tilt`` a tumbler; with ``frame=True``, a pandas
     /// DataFrame of the same columns.
     #[pyo3(signature = (steps, every=1, frame=false))]
@@ -403,6 +398,12 @@ impl World {
         series::to_python(py, &samples, tumblers, frame)
     }
 
+    /// Steps the world ``steps`` times, writing a JSON Lines trace to
+    /// ``path`` as ``rolypoly simulate --trace PATH --steps STEPS --every
+    /// EVERY`` writes it: the scene line, the state now, then a state line
+    /// every ``every`` steps and at the last, each with the events since
+    /// the one before. From a new world the file is byte for byte the
+    /// program's. The events also stay for :meth:`events`.
     #[pyo3(signature = (path, steps, every=1))]
     fn write_trace(
         &mut self,
