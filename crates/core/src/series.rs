@@ -1,6 +1,6 @@
 //! A run's totals step by step, as a table: the energy in its parts, the
-//! linear momentum, how many contacts and impacts the step had, and each
-//! tumbler's tilt. A few numbers a step where a trace writes every body:
+//! balls' linear momentum beside the impulses that changed it, how many
+//! contacts and impacts the step had, and each tumbler's tilt. A few numbers a step where a trace writes every body:
 //! what a plot beside its theory needs (`simulate --series`, Python's
 //! `World.series`).
 //!
@@ -13,11 +13,11 @@ use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
 use glam::DVec3;
-use rolypoly_physics::{Event, EventKind, World};
+use rolypoly_physics::{BallImpulses, Event, EventKind, World};
 
 /// The columns every series has, in order, before one `tumbler_K_tilt` a
-/// tumbler. Units: s, J, kg m/s, counts.
-pub const FIXED_COLUMNS: [&str; 12] = [
+/// tumbler. Units: s, J, kg m/s (N s for the impulses), counts.
+pub const FIXED_COLUMNS: [&str; 22] = [
     "step",
     "time",
     "kinetic_translational",
@@ -27,6 +27,16 @@ pub const FIXED_COLUMNS: [&str; 12] = [
     "momentum_x",
     "momentum_y",
     "momentum_z",
+    "surface_impulse_x",
+    "surface_impulse_y",
+    "surface_impulse_z",
+    "tumbler_impulse_x",
+    "tumbler_impulse_y",
+    "tumbler_impulse_z",
+    "guard_impulse_x",
+    "guard_impulse_y",
+    "guard_impulse_z",
+    "gravity_impulse_y",
     "contacts",
     "impacts",
     "surface_impacts",
@@ -57,16 +67,18 @@ pub struct Sample {
     pub rotational: f64,
     /// Energy of height above the floor, balls and tumblers (J).
     pub potential: f64,
-    /// Linear momentum of the balls and tumblers (kg m/s). The fireball,
-    /// which flies at a set speed whatever it meets, is left out.
+    /// Linear momentum of the balls (kg m/s).
     pub momentum: DVec3,
+    /// What changed it in the step, besides gravity's `M g dt` and the
+    /// balls' impacts on one another (see [`BallImpulses`]); `None` where
+    /// the engine does not count them (the GPU engine), written as `NaN`.
+    pub impulses: Option<BallImpulses>,
     /// Contacts the step's solver worked on: ball pairs, balls on walls
     /// and on tumblers (its rows, as the profiler counts them).
     pub contacts: usize,
     /// Impacts the step reported (its events).
     pub impacts: usize,
-    /// Those of them on the room's walls, floor and ceiling: with the
-    /// tumblers, what changes the momentum besides gravity.
+    /// Those of them on the room's walls, floor and ceiling.
     pub surface_impacts: usize,
     /// Each tumbler's tilt from upright (rad).
     pub tilts: Vec<f64>,
@@ -85,7 +97,8 @@ impl Sample {
             translational: 0.0,
             rotational: 0.0,
             potential: 0.0,
-            momentum: DVec3::ZERO,
+            momentum: balls.momentum(),
+            impulses: Some(world.ball_impulses()),
             contacts: {
                 let times = world.step_times();
                 times.pairs + times.other_contacts
@@ -107,7 +120,6 @@ impl Sample {
             sample.translational += 0.5 * m * v.length_squared();
             sample.rotational += 0.5 * balls.inertia(i) * balls.spins()[i].length_squared();
             sample.potential += m * g * (balls.positions()[i].y - floor);
-            sample.momentum += m * v;
         }
         let shape = world.tumbler_shape();
         for t in world.tumblers() {
@@ -116,7 +128,6 @@ impl Sample {
             sample.translational += moving;
             sample.rotational += t.kinetic_energy(shape) - moving;
             sample.potential += shape.mass * g * (t.center_of_mass().y - floor);
-            sample.momentum += shape.mass * v;
         }
         if let Some(f) = world.fireball() {
             sample.translational += f.kinetic_energy();
@@ -129,26 +140,47 @@ impl Sample {
         self.translational + self.rotational + self.potential
     }
 
+    /// The sample as one whose engine does not count the impulses.
+    pub fn without_impulses(self) -> Sample {
+        Sample {
+            impulses: None,
+            ..self
+        }
+    }
+
+    /// The value of column `k` of [`columns`] (`NaN` past them).
+    pub fn value(&self, k: usize) -> f64 {
+        let impulse = |of: fn(&BallImpulses) -> DVec3, axis: usize| {
+            self.impulses.map_or(f64::NAN, |given| of(&given)[axis])
+        };
+        match k {
+            0 => self.step as f64,
+            1 => self.time,
+            2 => self.translational,
+            3 => self.rotational,
+            4 => self.potential,
+            5 => self.total(),
+            6..=8 => self.momentum[k - 6],
+            9..=11 => impulse(|g| g.surfaces, k - 9),
+            12..=14 => impulse(|g| g.tumblers, k - 12),
+            15..=17 => impulse(|g| g.guard, k - 15),
+            18 => impulse(|g| g.gravity, 1),
+            19 => self.contacts as f64,
+            20 => self.impacts as f64,
+            21 => self.surface_impacts as f64,
+            _ => self
+                .tilts
+                .get(k - FIXED_COLUMNS.len())
+                .copied()
+                .unwrap_or(f64::NAN),
+        }
+    }
+
     /// The sample's values in the order of [`columns`].
     pub fn values(&self) -> Vec<f64> {
-        let m = self.momentum;
-        [
-            self.step as f64,
-            self.time,
-            self.translational,
-            self.rotational,
-            self.potential,
-            self.total(),
-            m.x,
-            m.y,
-            m.z,
-            self.contacts as f64,
-            self.impacts as f64,
-            self.surface_impacts as f64,
-        ]
-        .into_iter()
-        .chain(self.tilts.iter().copied())
-        .collect()
+        (0..FIXED_COLUMNS.len() + self.tilts.len())
+            .map(|k| self.value(k))
+            .collect()
     }
 
     /// One CSV line, without its line end. A whole number (a step, a
@@ -242,6 +274,26 @@ mod tests {
         let read: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
         assert_eq!(read.len(), columns(world.tumblers().len()).len());
         assert_eq!(read, sample.values());
+    }
+
+    #[test]
+    fn each_value_sits_under_its_columns_name() {
+        let mut world = World::new(WorldConfig::default(), 4).unwrap();
+        for _ in 0..20 {
+            world.step();
+        }
+        let sample = Sample::of(&world, &[]);
+        let names = columns(world.tumblers().len());
+        let at = |name: &str| sample.value(names.iter().position(|c| c == name).unwrap());
+        let given = world.ball_impulses();
+        assert_eq!(at("momentum_y"), world.balls().momentum().y);
+        assert_eq!(at("surface_impulse_x"), given.surfaces.x);
+        assert_eq!(at("tumbler_impulse_z"), given.tumblers.z);
+        assert_eq!(at("guard_impulse_y"), given.guard.y);
+        assert_eq!(at("gravity_impulse_y"), given.gravity.y);
+        assert_eq!(at("surface_impacts"), 0.0);
+        assert_eq!(at("tumbler_4_tilt"), world.tumblers()[4].tilt());
+        assert!(sample.clone().without_impulses().value(10).is_nan());
     }
 
     #[test]

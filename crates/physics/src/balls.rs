@@ -200,6 +200,14 @@ impl Balls {
         }
     }
 
+    /// The live balls' linear momentum (kg m/s).
+    pub fn momentum(&self) -> DVec3 {
+        (0..self.len())
+            .filter(|&i| self.alive[i])
+            .map(|i| self.mass[i] * self.velocity[i])
+            .sum()
+    }
+
     /// Kinetic energy of ball `i`, moving and spinning (J).
     pub fn kinetic_energy(&self, i: usize) -> f64 {
         0.5 * self.mass[i] * self.velocity[i].length_squared()

@@ -140,6 +140,11 @@ impl Run {
         )))
     }
 
+    /// Whether the GPU engine steps the balls.
+    pub fn on_gpu(&self) -> bool {
+        self.gpu.is_some()
+    }
+
     /// `report` on the world with every ball in it: on the GPU engine its
     /// balls are read back and put into the world for the while, as
     /// `rolypoly simulate` does for its trace.

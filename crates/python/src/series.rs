@@ -4,6 +4,7 @@
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
 use rolypoly_core::series::{Sample, columns};
+use rolypoly_physics::Event;
 
 use crate::arrays::column;
 use crate::errors::gpu_error;
@@ -12,21 +13,29 @@ use crate::run::Run;
 /// The samples of `steps` steps of `run`: the state now, then every
 /// `every` steps and at the last, as `simulate --series` takes them.
 pub fn samples(run: &mut Run, steps: u64, every: u64) -> PyResult<Vec<Sample>> {
-    let mut samples = vec![
-        run.with_balls(|w| Sample::of(w, &[]))
-            .map_err(|e| gpu_error(&e))?,
-    ];
+    let mut samples = vec![sample(run, &[])?];
     for step in 1..=steps {
         run.tick().map_err(|e| gpu_error(&e))?;
         if step % every == 0 || step == steps {
             let events = run.last_events().to_vec();
-            let sample = run
-                .with_balls(|w| Sample::of(w, &events))
-                .map_err(|e| gpu_error(&e))?;
-            samples.push(sample);
+            samples.push(sample(run, &events)?);
         }
     }
     Ok(samples)
+}
+
+/// The sample of `run` now, whose last step reported `events`; on the GPU
+/// engine, which counts no impulses, without them.
+fn sample(run: &mut Run, events: &[Event]) -> PyResult<Sample> {
+    let gpu = run.on_gpu();
+    let sample = run
+        .with_balls(|w| Sample::of(w, events))
+        .map_err(|e| gpu_error(&e))?;
+    Ok(if gpu {
+        sample.without_impulses()
+    } else {
+        sample
+    })
 }
 
 /// The samples as a dict of column name to a float64 array, in the

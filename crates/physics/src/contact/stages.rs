@@ -3,6 +3,7 @@
 
 use super::warm::{Held, StageFriction, WarmStart};
 use crate::balls::Balls;
+use crate::impulses::BallImpulses;
 
 use super::{
     Bodies, Contact, Contacts, Crowd, FrictionImpulse, Pair, PairMaterial, RowStart, TOUCHING,
@@ -46,7 +47,12 @@ pub(crate) struct StepContext<'a> {
 ///
 /// `hand(pair, balls)` finishes each pair before anything reads it: the
 /// impacts resolved before this stage hand it their outcome.
-pub(crate) fn solve_predict(step: &mut StepContext, hand: &(dyn Fn(&mut Pair, &Balls) + Sync)) {
+///
+/// Returns what the walls and tumblers gave the balls over the stage.
+pub(crate) fn solve_predict(
+    step: &mut StepContext,
+    hand: &(dyn Fn(&mut Pair, &Balls) + Sync),
+) -> BallImpulses {
     let StepContext {
         dt,
         iterations,
@@ -135,7 +141,11 @@ pub(crate) fn solve_predict(step: &mut StepContext, hand: &(dyn Fn(&mut Pair, &B
             bodies.solve_friction(c);
         });
     }
-    contacts.keep_wall_impulses(|_| true);
+    let given = BallImpulses {
+        surfaces: contacts.keep_wall_impulses(|_| true),
+        tumblers: contacts.tumbler_impulse_on_balls(|_| true),
+        ..BallImpulses::default()
+    };
     // The project stage asks about the balls of contacts that pushed
     // against a fast approach: only those may bounce.
     let fast = |pushed: f64, approach: f64| pushed > 0.0 && approach < -bounce_threshold;
@@ -156,6 +166,7 @@ pub(crate) fn solve_predict(step: &mut StepContext, hand: &(dyn Fn(&mut Pair, &B
             crowd.will_ask(c.ball);
         }
     }
+    given
 }
 
 /// The two solver stages, each warm-started from its own impulses.
@@ -237,7 +248,8 @@ const PROJECT_FRICTION_SWEEPS: usize = 2;
 ///
 /// Warm started from `warm` as the predict stage. The impulses of both
 /// stages are recorded into `record` for the next step's warm start.
-pub(crate) fn solve_project(step: &mut StepContext) {
+/// Returns what the walls and tumblers gave the balls over the stage.
+pub(crate) fn solve_project(step: &mut StepContext) -> BallImpulses {
     let StepContext {
         iterations,
         bounce_threshold,
@@ -339,8 +351,15 @@ pub(crate) fn solve_project(step: &mut StepContext) {
         });
     }
     contacts.record_row_impulses((&mut **record, ids));
-    contacts.keep_wall_impulses(|c| c.pushed > 0.0);
+    let given = BallImpulses {
+        surfaces: contacts.keep_wall_impulses(|c| c.pushed > 0.0),
+        // Only the contacts that pushed were solved: the others keep the
+        // predict stage's friction.
+        tumblers: contacts.tumbler_impulse_on_balls(|c| c.pushed > 0.0),
+        ..BallImpulses::default()
+    };
     for c in &contacts.walls {
         record.record_wall(c.ball as usize, c.surface, [c.pushed, c.impulse]);
     }
+    given
 }

@@ -11,7 +11,7 @@
 use crate::tumbler::Response;
 use glam::DVec3;
 
-use super::{Bodies, BodyRef, Contact};
+use super::{Bodies, BodyRef, Contact, Contacts};
 
 /// A contact's two friction rows: their directions, masses, the tumbler's
 /// response along each, and the impulses accumulated over a stage.
@@ -72,5 +72,23 @@ impl Bodies<'_> {
             let response = c.slide.response[k];
             self.push(c.b, t, &response, -delta);
         }
+    }
+}
+
+impl Contacts {
+    /// The impulse the tumblers gave balls over a stage, normal and
+    /// friction, through the ball-tumbler contacts `solved` tells (N s).
+    pub(super) fn tumbler_impulse_on_balls<F>(&self, solved: F) -> DVec3
+    where
+        F: Fn(&Contact) -> bool,
+    {
+        self.tumbler_contacts
+            .iter()
+            .filter(|c| matches!((c.a, c.b), (BodyRef::Ball(_), BodyRef::Tumbler(..))) && solved(c))
+            .fold(DVec3::ZERO, |sum, c| {
+                let [t1, t2] = c.slide.tangents;
+                let [f1, f2] = c.slide.impulse;
+                sum + c.normal * c.impulse + t1 * f1 + t2 * f2
+            })
     }
 }

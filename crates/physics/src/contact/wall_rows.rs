@@ -106,11 +106,26 @@ impl Contacts {
 
     /// Hands each ball-wall contact its row's normal impulse, 0 for the
     /// contacts without a row; `chosen` tells them as in
-    /// [`Contacts::start_wall_rows`].
-    pub(super) fn keep_wall_impulses<F>(&mut self, chosen: F)
+    /// [`Contacts::start_wall_rows`]. Returns the impulse the rows gave
+    /// their balls over the stage, warm start and friction included (N s).
+    pub(super) fn keep_wall_impulses<F>(&mut self, chosen: F) -> DVec3
     where
         F: Fn(&WallContact) -> bool,
     {
+        let WallRows {
+            rows,
+            impulses,
+            frames,
+        } = &self.wall_rows;
+        let given = rows
+            .iter()
+            .zip(impulses)
+            .fold(DVec3::ZERO, |sum, (row, held)| {
+                let frame = &frames[row.surface.index()];
+                sum + frame.normal * held.normal
+                    + frame.tangents[0] * held.friction[0]
+                    + frame.tangents[1] * held.friction[1]
+            });
         let mut impulses = self.wall_rows.impulses.iter();
         for c in &mut self.walls {
             c.impulse = if chosen(c) {
@@ -119,6 +134,7 @@ impl Contacts {
                 0.0
             };
         }
+        given
     }
 }
 

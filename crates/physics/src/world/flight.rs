@@ -30,7 +30,9 @@ impl World {
             } else {
                 0.0
             };
-            self.balls.velocity[i] = v.dot(n) * n + tangential * keep;
+            let kept = v.dot(n) * n + tangential * keep;
+            self.impulses.surfaces += self.balls.mass[i] * (kept - v);
+            self.balls.velocity[i] = kept;
             self.balls.spin[i] *= keep;
         }
     }
@@ -91,10 +93,14 @@ impl World {
                 // Slower than the threshold, it comes to rest on the wall.
                 let bounces = speed > solver.bounce_threshold;
                 let restitution = if bounces { e } else { 0.0 };
+                let before = u;
                 (u, spin, _) = bounce_off_wall((u, spin), n, (r, m, inertia), restitution, mu);
+                self.impulses.surfaces += m * (u - before);
                 if !bounces && n.dot(g) < 0.0 {
                     // Resting on it: the wall carries gravity from here on.
-                    g -= n.dot(g) * n;
+                    let carried = n.dot(g) * n;
+                    g -= carried;
+                    self.impulses.surfaces -= m * carried * left;
                 }
                 if speed > solver.event_threshold {
                     self.balls.tint[i] = Tint::Surface(s);

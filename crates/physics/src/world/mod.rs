@@ -36,6 +36,7 @@ use crate::contact::{
 };
 use crate::events::Event;
 use crate::fireball::Fireball;
+use crate::impulses::BallImpulses;
 use crate::rng::Rng;
 use crate::room::Room;
 use crate::threads::with_workers_awake;
@@ -179,6 +180,9 @@ pub struct World {
     ball_hold: Option<hand::BallHold>,
     /// How long the last step's stages took.
     times: StepTimes,
+    /// What the room's surfaces and the tumblers gave the balls in the
+    /// last step.
+    impulses: BallImpulses,
     scratch: StepScratch,
 }
 
@@ -209,6 +213,7 @@ impl Clone for World {
             pour: self.pour.clone(),
             ball_hold: self.ball_hold,
             times: self.times,
+            impulses: self.impulses,
             scratch: StepScratch::sized_for(self.scratch.hit_wall.len(), self.tumblers.len()),
         }
     }
@@ -323,6 +328,7 @@ impl World {
             pour: pour::Pour::default(),
             ball_hold: None,
             times: StepTimes::default(),
+            impulses: BallImpulses::default(),
             scratch,
             room,
             shape: Arc::new(shape),
@@ -550,6 +556,12 @@ impl World {
         &self.times
     }
 
+    /// The impulses the room's surfaces and the tumblers gave the balls
+    /// in the last step (see [`BallImpulses`] for what they leave out).
+    pub fn ball_impulses(&self) -> BallImpulses {
+        self.impulses
+    }
+
     /// Takes `excess` joules from the balls' motion, all slowed alike, if
     /// they have it and the world then holds no more than `limit`.
     fn take_kinetic_energy(&mut self, excess: f64, limit: f64) -> bool {
@@ -559,6 +571,7 @@ impl World {
             return false;
         }
         let keep = ((kinetic - excess) / kinetic).sqrt();
+        self.impulses.guard += (keep - 1.0) * self.balls.momentum();
         for i in 0..self.balls.len() {
             self.balls.velocity[i] *= keep;
             self.balls.spin[i] *= keep;
@@ -598,6 +611,7 @@ impl World {
             1.0
         };
         let share = share.clamp(0.0, 1.0);
+        self.impulses.guard += (share - 1.0) * self.balls.momentum();
         for i in 0..self.balls.len() {
             if self.balls.alive[i] {
                 let from = start.position[i];
@@ -629,6 +643,13 @@ impl World {
         // What came before this advance (an energy check, a retake's
         // restore) is the finish's.
         self.times.lap(Stage::Finish, clock);
+        // A retaken step counts its impulses afresh.
+        let live = (0..self.balls.len()).filter(|&i| self.balls.alive[i]);
+        let mass: f64 = live.map(|i| self.balls.mass[i]).sum();
+        self.impulses = BallImpulses {
+            gravity: mass * g * dt,
+            ..BallImpulses::default()
+        };
         self.grid.rebuild(&self.balls.position, &self.balls.alive);
         let first_event = self.events.len();
         self.enter_sorted_order();
@@ -655,7 +676,8 @@ impl World {
 
         self.update_contact_inertia();
         self.begin_recording();
-        solve_project(&mut self.step_context(warm_start));
+        let given = solve_project(&mut self.step_context(warm_start));
+        self.impulses += given;
         self.times.lap(Stage::Project, clock);
         self.report_contacts();
         // Pushing sunk balls apart lifts them: it may spend what the step

@@ -222,6 +222,8 @@ impl World {
             (0.0, kinetic / energy)
         };
         for &i in balls {
+            let p = self.balls.mass[i] * self.balls.velocity[i];
+            self.impulses.guard += (keep - 1.0) * p;
             self.balls.velocity[i] *= keep;
             self.balls.spin[i] *= keep;
         }

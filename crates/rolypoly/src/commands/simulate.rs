@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 
 use anyhow::Context;
 use rolypoly_gpu::{Compute, GpuBalls};
-use rolypoly_physics::{EventKind, World};
+use rolypoly_physics::{Event, EventKind, World};
 
 use crate::cli::{SimulateArgs, steps_for};
 use crate::series::{self, Sample, SeriesWriter};
@@ -191,9 +191,7 @@ pub fn run<W: Write>(
         })??;
     }
     if let Some(series) = series.as_deref_mut() {
-        with_balls(&mut sim.world, gpu.as_deref(), |world| {
-            series.sample(&Sample::of(world, &[]))
-        })??;
+        series.sample(&sample(&mut sim.world, gpu.as_deref(), &[])?)?;
     }
     let series_every = options.series_every.max(1);
 
@@ -209,9 +207,7 @@ pub fn run<W: Write>(
             && (step % series_every == 0 || step == options.steps)
         {
             let last = sim.last_events().to_vec();
-            with_balls(&mut sim.world, gpu.as_deref(), |world| {
-                series.sample(&Sample::of(world, &last))
-            })??;
+            series.sample(&sample(&mut sim.world, gpu.as_deref(), &last)?)?;
         }
         match trace.as_deref_mut() {
             Some(trace) => {
@@ -234,6 +230,16 @@ pub fn run<W: Write>(
 
 /// `report` on `world`, with the GPU engine's balls (if it steps them)
 /// read back and put into the world for the while.
+/// The series' sample of `world` now, whose last step reported `events`;
+/// on the GPU engine, which counts no impulses, without them.
+fn sample(world: &mut World, gpu: Option<&GpuBalls>, events: &[Event]) -> anyhow::Result<Sample> {
+    let sample = with_balls(world, gpu, |world| Sample::of(world, events))?;
+    Ok(match gpu {
+        Some(_) => sample.without_impulses(),
+        None => sample,
+    })
+}
+
 fn with_balls<T>(
     world: &mut World,
     gpu: Option<&GpuBalls>,

@@ -179,6 +179,11 @@ impl Impacts {
         self.lists.iter().any(|l| !l.touched.is_empty())
     }
 
+    /// The impulse the walls gave the balls in this step's impacts (N s).
+    pub(super) fn wall_impulse(&self) -> DVec3 {
+        self.lists[0].wall_impulse + self.lists[1].wall_impulse
+    }
+
     /// Forgets the step's impacts, ready for `slots` balls.
     pub(super) fn clear(&mut self, slots: usize) {
         let per_slot = &mut self.per_slot;
@@ -195,6 +200,7 @@ impl Impacts {
             lists.asked.clear();
             lists.queue.clear();
             lists.events.clear();
+            lists.wall_impulse = DVec3::ZERO;
         }
         per_slot.shift.resize(slots, DVec3::ZERO);
         per_slot.met.resize(slots, 0);
@@ -324,6 +330,7 @@ impl World {
             }
         }
         impacts.pairs_changed = impacts.any_met() || any_due;
+        self.impulses.surfaces += impacts.wall_impulse();
         if impacts.any_met() {
             self.hand_walls_to_contacts(&impacts, &setting);
         }
@@ -363,7 +370,8 @@ impl World {
                 hand_pair(p, balls, &impacts, &partners, threshold, dt);
             }
         };
-        solve_predict(&mut self.step_context(warm_start), &hand);
+        let given = solve_predict(&mut self.step_context(warm_start), &hand);
+        self.impulses += given;
         self.scratch.impacts = impacts;
         self.scratch.ball_partners = partners;
     }

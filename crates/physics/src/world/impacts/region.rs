@@ -180,6 +180,8 @@ pub(super) struct Lists {
     pub touched: Vec<u32>,
     pub asked: Vec<u32>,
     pub events: Vec<Event>,
+    /// The impulse the walls gave the run's balls (N s).
+    pub wall_impulse: DVec3,
 }
 
 /// Slots whose impacts wait for the pass over all slots: those with
@@ -407,6 +409,7 @@ impl Run<'_> {
             setting.wall_friction,
         );
         let dv = after - u;
+        self.lists.wall_impulse += fixed.mass[i] * dv;
         self.keep_start_velocity(i);
         let moving = &mut self.moving;
         moving.velocity[k] += dv;
