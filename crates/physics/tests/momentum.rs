@@ -98,7 +98,9 @@ fn in_a_weightless_elastic_gas_only_the_walls_change_the_momentum() {
 
 #[test]
 fn with_gravity_the_change_also_holds_m_g_dt() {
-    for (balls, seed) in [(120, 3), (600, 8)] {
+    // 400 balls of seed 3 hold one bouncing ever faster on the floor, its
+    // bounces left unfinished at the step's end: the floor holds it up.
+    for (balls, seed) in [(120, 3), (400, 3), (600, 8)] {
         let mut cfg = elastic(9.81);
         cfg.tumblers.placements.clear();
         cfg.balls.count = balls;

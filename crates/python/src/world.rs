@@ -379,7 +379,10 @@ impl World {
     /// dict of column name to a float64 array, one value a sample, in the
     /// order ``step``, ``time``, ``kinetic_translational``,
     /// ``kinetic_rotational``, ``potential``, ``total``, ``momentum_x``,
-    /// ``momentum_y``, ``momentum_z``, ``contacts``, ``impacts``,
+    /// ``momentum_y``, ``momentum_z``, the step's impulses on the balls
+    /// ``surface_impulse_x`` (``_y``, ``_z``), ``tumbler_impulse_x``,
+    /// ``guard_impulse_x`` (each with ``_y`` and ``_z``) and
+    /// ``gravity_impulse_y``, ``contacts``, ``impacts``,
     /// ``surface_impacts``, then
     /// ``tumbler_K_tilt`` a tumbler; with ``frame=True``, a pandas
     /// DataFrame of the same columns.

@@ -47,6 +47,24 @@ def test_the_series_total_is_the_worlds_energy():
     assert np.all(np.diff(series["total"]) <= 1e-9 * series["total"][0])
 
 
+@pytest.mark.parametrize("seed", [1, 6])
+def test_the_momentum_moves_by_the_impulses_the_series_counts(seed):
+    """Newton's second law from the columns alone: a step's change of the
+    balls' momentum is the surfaces', tumblers', guard's and gravity's
+    impulses of that step (the default room: balls landing on the floor and
+    the tumblers)."""
+    s = rolypoly.World(seed=seed).series(240)
+    momentum = np.stack([s[f"momentum_{a}"] for a in "xyz"], axis=1)
+    given = sum(np.stack([s[f"{k}_impulse_{a}"] for a in "xyz"], axis=1)
+                for k in ("surface", "tumbler", "guard"))
+    given[:, 1] += s["gravity_impulse_y"]
+    gap = np.diff(momentum, axis=0) - given[1:]
+    scale = np.abs(given).max()
+    assert scale > 0.1
+    assert np.abs(gap).max() <= 1e-9 * scale
+    assert np.abs(s["tumbler_impulse_x"]).max() > 0
+
+
 @pytest.mark.parametrize("steps,every", [(-1, 1), (10, 0), (10, -2)])
 def test_bad_lengths_are_value_errors(steps, every):
     with pytest.raises(ValueError):

@@ -80,6 +80,7 @@ impl World {
                 let Some((t, s)) = first else {
                     x += u * left + 0.5 * g * left * left;
                     u += g * left;
+                    left = 0.0;
                     break;
                 };
                 x += u * t + 0.5 * g * t * t;
@@ -116,6 +117,10 @@ impl World {
                     });
                 }
             }
+            // Bouncing ever faster on a floor (an elastic ball nearly at
+            // rest) it ends the step where its bounces left it: the wall
+            // held it up for the rest.
+            self.impulses.surfaces -= m * g * left;
             self.balls.position[i] = room.clamp_sphere(x, r);
             self.balls.velocity[i] = u;
             self.balls.spin[i] = spin;

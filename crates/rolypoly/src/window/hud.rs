@@ -157,7 +157,7 @@ const KEYS: [(&str, &str); 23] = [
     ("F3", "profiler: the step's stages and the frame's passes"),
     (
         "F4",
-        "plots: energy, momentum, contacts, a tumbler's tilt beside theory; export CSV",
+        "plots: energy, momentum beside its impulses, a body, a tilt beside theory",
     ),
     ("M", "mute the sound / play it again"),
     ("H or F1", "this help"),

@@ -6,10 +6,11 @@
 //! renderer's tumbler mesh).
 
 use std::ops::RangeInclusive;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use rolypoly_render::{DebugLayer, DebugViews};
 
+use super::plots::Plots;
 use crate::sandbox::{SHIPPED_SCENES, Sandbox, THROW_SPEEDS, TIME_SCALES};
 use crate::scene::Scene;
 use crate::scene::keys::{Control, KEYS, Slot, Takes};
@@ -47,6 +48,17 @@ pub enum PanelAction {
     Save(PathBuf),
     /// The timeline moved to this tick.
     Rewind(u64),
+    /// The plots tab's "export CSV", into this file.
+    ExportPlots(PathBuf),
+}
+
+/// The panel's tabs: the sandbox's settings, or the plots (as F4's window
+/// shows them).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Tab {
+    #[default]
+    Sandbox,
+    Plots,
 }
 
 pub struct Panel {
@@ -58,6 +70,7 @@ pub struct Panel {
     pub message: Option<String>,
     /// The debug views shown (keys 1 to 6).
     pub debug: DebugViews,
+    pub tab: Tab,
 }
 
 impl Panel {
@@ -72,13 +85,22 @@ impl Panel {
             save_path: "my-scene.toml".into(),
             message: None,
             debug: DebugViews::default(),
+            tab: Tab::default(),
         }
     }
 
     /// Draws the panel, if open and the window can hold it, and applies
     /// the player's changes of settings and playback to `sandbox`.
-    pub fn show(&mut self, ui: &mut egui::Ui, sandbox: &mut Sandbox) -> Option<PanelAction> {
+    /// `plots` draw in the plots tab, their export into `folder`.
+    pub fn show(
+        &mut self,
+        ui: &mut egui::Ui,
+        sandbox: &mut Sandbox,
+        plots: &mut Plots,
+        folder: &Path,
+    ) -> Option<PanelAction> {
         let screen = ui.ctx().content_rect();
+        plots.docked = false;
         if !self.open || !fits(screen.size()) {
             return None;
         }
@@ -88,8 +110,20 @@ impl Panel {
             .exact_size(width)
             .resizable(false)
             .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    action = self.contents(ui, sandbox);
+                ui.horizontal(|ui| {
+                    ui.selectable_value(&mut self.tab, Tab::Sandbox, "Sandbox");
+                    ui.selectable_value(&mut self.tab, Tab::Plots, "Plots");
+                });
+                egui::ScrollArea::vertical().show(ui, |ui| match self.tab {
+                    Tab::Sandbox => action = self.contents(ui, sandbox),
+                    Tab::Plots => {
+                        plots.docked = true;
+                        if plots.open {
+                            ui.label("The plots show in their own window (F4 closes it).");
+                        } else {
+                            action = plots.contents(ui, folder).map(PanelAction::ExportPlots);
+                        }
+                    }
                 });
             });
         action
@@ -97,7 +131,6 @@ impl Panel {
 
     fn contents(&mut self, ui: &mut egui::Ui, sandbox: &mut Sandbox) -> Option<PanelAction> {
         let mut action = None;
-        ui.heading("Sandbox");
         ui.small("Tab hides this panel");
         if let Some(message) = &self.message {
             ui.colored_label(egui::Color32::from_rgb(255, 200, 80), message);
@@ -303,7 +336,7 @@ mod tests {
             ..Default::default()
         };
         let mut output = ctx.run_ui(input, |ui| {
-            panel.show(ui, sandbox);
+            panel.show(ui, sandbox, &mut Plots::default(), Path::new("."));
         });
         // Nothing draws them here.
         output.textures_delta.clear();
@@ -341,6 +374,7 @@ mod tests {
     struct Toy {
         panel: Panel,
         sandbox: Sandbox,
+        plots: Plots,
         actions: Vec<PanelAction>,
     }
 
@@ -351,13 +385,16 @@ mod tests {
         let toy = Toy {
             panel,
             sandbox: Sandbox::new(Scene::default(), "default.toml", seed).unwrap(),
+            plots: Plots::default(),
             actions: Vec::new(),
         };
         egui_kittest::Harness::builder()
             .with_size([1280.0, 2400.0])
             .build_ui_state(
                 |ui, toy: &mut Toy| {
-                    if let Some(action) = toy.panel.show(ui, &mut toy.sandbox) {
+                    let (panel, sandbox, plots) =
+                        (&mut toy.panel, &mut toy.sandbox, &mut toy.plots);
+                    if let Some(action) = panel.show(ui, sandbox, plots, Path::new("shots")) {
                         toy.actions.push(action);
                     }
                 },
@@ -399,6 +436,32 @@ mod tests {
             let v = s.world().balls().velocities()[k].y;
             assert!((v + gravity * dt).abs() < 1e-12, "{v}");
         }
+    }
+
+    #[test]
+    fn the_plots_tab_shows_the_plots_samples_them_and_exports_them() {
+        let mut h = harness(3);
+        assert!(!h.state().plots.docked);
+        h.get_by_label("Plots").click();
+        h.run();
+        assert!(h.state().plots.docked && h.state().plots.wanted());
+        {
+            let toy = h.state_mut();
+            for _ in 0..5 {
+                toy.sandbox.sim.tick();
+                toy.plots.record(&toy.sandbox.sim.world, &[]);
+            }
+        }
+        h.run();
+        h.get_by_label("export CSV").click();
+        h.run();
+        let expected = PanelAction::ExportPlots(PathBuf::from("shots/rolypoly-series-5.csv"));
+        assert_eq!(h.state().actions, [expected]);
+        // Back to the settings: the plots are no longer wanted.
+        h.get_by_label("Sandbox").click();
+        h.run();
+        assert!(!h.state().plots.docked);
+        h.get_by_label("pause (P)");
     }
 
     #[test]

@@ -1,32 +1,106 @@
-//! The plots (key F4): the run's totals over the last 30 s of simulated
-//! time, the series `simulate --series` writes: the energy in its parts,
-//! the momentum, the contacts and impacts a step, and one tumbler's tilt
-//! beside the small-angle rolling pendulum's curve. A line marks the moment
-//! shown, so that going back (rewind) shows where the run stands in what
-//! was plotted; steps taken from there replace what came after.
+//! The plots (key F4, or the sandbox panel's plots tab): the run's totals
+//! over the last 30 s of simulated time, the series `simulate --series`
+//! writes: the energy in its parts; the balls' momentum beside the
+//! impulses that changed it (what the walls, floor, tumblers and gravity
+//! gave, added up from the first sample: Newton's second law in integral
+//! form, drawn); the contacts and impacts a step; and one body's height,
+//! speed and spin, for a tumbler its tilt beside the small-angle rolling
+//! pendulum's curve. A line marks the moment shown, so that going back
+//! (rewind) shows where the run stands in what was plotted; steps taken
+//! from there replace what came after.
 
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 
-use egui_plot::{Corner, Legend, Line, Plot, VLine};
+use egui_plot::{Corner, Legend, Line, LineStyle, Plot, PlotUi, VLine};
+use glam::DVec3;
 use rolypoly_core::series::{FIXED_COLUMNS, Sample, SeriesError, SeriesWriter};
 use rolypoly_physics::{Event, World};
 
 /// How much simulated time the plots keep (s).
 const KEPT_SECONDS: f64 = 30.0;
 
-/// The plots' window and the samples it shows.
-#[derive(Default)]
+/// The most points a line draws: 30 s at 120 steps a second are 3 600
+/// samples, and a plot a few hundred pixels wide shows no more than this.
+const MOST_POINTS: usize = 900;
+
+/// The body whose own motion is plotted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Body {
+    Ball(usize),
+    Tumbler(usize),
+}
+
+/// A body's height above the floor (m), speed (m/s) and spin (rad/s).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Motion {
+    pub height: f64,
+    pub speed: f64,
+    pub spin: f64,
+}
+
+impl Body {
+    /// Its motion in `world`, if it is there (a ball caught is not).
+    pub fn motion(self, world: &World) -> Option<Motion> {
+        let floor = world.room().min.y;
+        match self {
+            Body::Ball(i) => {
+                let balls = world.balls();
+                (balls.alive().get(i) == Some(&true)).then(|| Motion {
+                    height: balls.positions()[i].y - floor,
+                    speed: balls.velocities()[i].length(),
+                    spin: balls.spins()[i].length(),
+                })
+            }
+            Body::Tumbler(t) => world.tumblers().get(t).map(|t| Motion {
+                height: t.center_of_mass().y - floor,
+                speed: t.linear_velocity().length(),
+                spin: t.angular_velocity().length(),
+            }),
+        }
+    }
+
+    fn name(self) -> String {
+        match self {
+            Body::Ball(i) => format!("ball {i}"),
+            Body::Tumbler(t) => format!("tumbler {t}"),
+        }
+    }
+}
+
+/// A sample, and the plotted body's motion then.
+struct Kept {
+    sample: Sample,
+    body: Option<(Body, Motion)>,
+}
+
+/// The plots and the samples they show.
 pub struct Plots {
-    /// Whether its window shows (and samples are taken).
+    /// Whether its window shows.
     pub open: bool,
-    samples: VecDeque<Sample>,
+    /// Whether the sandbox panel shows them as its tab.
+    pub docked: bool,
+    kept: VecDeque<Kept>,
     /// The step the world stands at (the cursor).
     now: u64,
-    /// The tumbler whose tilt is plotted.
-    tumbler: usize,
+    /// The body whose motion is plotted: the one the hand holds, or as
+    /// chosen in the plots.
+    body: Option<Body>,
     /// The rolling pendulum's angular frequency (rad/s) for the tumblers.
     rocking: f64,
+}
+
+impl Default for Plots {
+    fn default() -> Plots {
+        Plots {
+            open: false,
+            docked: false,
+            kept: VecDeque::new(),
+            now: 0,
+            body: Some(Body::Tumbler(0)),
+            rocking: 0.0,
+        }
+    }
 }
 
 /// The theory's curve through a tumbler's last swing: the small-angle
@@ -41,9 +115,15 @@ pub struct Swing {
 }
 
 impl Plots {
+    /// Whether samples are wanted: the window or the panel's tab shows them.
+    pub fn wanted(&self) -> bool {
+        self.open || self.docked
+    }
+
     /// Takes a sample of `world`, whose last step reported `events`, if it
     /// has stepped since the last one. A world that went back moves the
-    /// cursor only; a step from there drops the samples after it.
+    /// cursor only; a step from there drops the samples after it. A body
+    /// the hand holds becomes the plotted one.
     pub fn record(&mut self, world: &World, events: &[Event]) {
         let step = world.step_count();
         let (seen, went_back) = (self.now, step < self.now);
@@ -51,42 +131,48 @@ impl Plots {
         self.rocking = world
             .tumbler_shape()
             .rocking_frequency(world.config().gravity);
-        if step == seen && !self.samples.is_empty() || went_back {
+        if let Some(i) = world.held_ball() {
+            self.body = Some(Body::Ball(i));
+        } else if let Some(t) = world.grabbed() {
+            self.body = Some(Body::Tumbler(t));
+        }
+        if step == seen && !self.kept.is_empty() || went_back {
             return;
         }
-        while self.samples.back().is_some_and(|s| s.step >= step) {
-            self.samples.pop_back();
+        while self.kept.back().is_some_and(|k| k.sample.step >= step) {
+            self.kept.pop_back();
         }
-        self.samples.push_back(Sample::of(world, events));
-        let newest = self.samples.back().map_or(0.0, |s| s.time);
+        let body = self
+            .body
+            .and_then(|body| body.motion(world).map(|motion| (body, motion)));
+        self.kept.push_back(Kept {
+            sample: Sample::of(world, events),
+            body,
+        });
+        let newest = self.kept.back().map_or(0.0, |k| k.sample.time);
         while self
-            .samples
+            .kept
             .front()
-            .is_some_and(|s| s.time < newest - KEPT_SECONDS)
+            .is_some_and(|k| k.sample.time < newest - KEPT_SECONDS)
         {
-            self.samples.pop_front();
-        }
-        let tumblers = self.samples.back().map_or(0, |s| s.tilts.len());
-        if self.tumbler >= tumblers {
-            self.tumbler = 0;
+            self.kept.pop_front();
         }
     }
 
     /// The samples kept, oldest first.
-    #[cfg(test)]
-    pub fn samples(&self) -> impl Iterator<Item = &Sample> {
-        self.samples.iter()
+    pub fn samples(&self) -> impl ExactSizeIterator<Item = &Sample> + DoubleEndedIterator {
+        self.kept.iter().map(|k| &k.sample)
     }
 
     /// Writes the samples kept as `simulate --series` writes its lines.
     pub fn export(&self, path: &Path) -> Result<(), SeriesError> {
-        let tumblers = self.samples.back().map_or(0, |s| s.tilts.len());
+        let tumblers = self.samples().last().map_or(0, |s| s.tilts.len());
         let file = std::fs::File::create(path).map_err(|source| SeriesError {
             name: path.display().to_string(),
             source,
         })?;
         let mut writer = SeriesWriter::new(file, path.display().to_string(), tumblers)?;
-        for sample in &self.samples {
+        for sample in self.samples() {
             writer.sample(sample)?;
         }
         writer.finish().map(drop)
@@ -96,7 +182,7 @@ impl Plots {
     /// sample above both neighbours, past the first.
     pub fn last_swing(&self, k: usize) -> Option<Swing> {
         let tilt = |s: &Sample| s.tilts.get(k).copied();
-        let shown: Vec<&Sample> = self.samples.iter().filter(|s| s.step <= self.now).collect();
+        let shown: Vec<&Sample> = self.samples().filter(|s| s.step <= self.now).collect();
         shown.windows(3).rev().find_map(|w| {
             let (a, b, c) = (tilt(w[0])?, tilt(w[1])?, tilt(w[2])?);
             (b > a && b >= c && b > 1e-4).then_some(Swing {
@@ -111,99 +197,209 @@ impl Plots {
         (swing.amplitude * (self.rocking * (t - swing.at)).cos()).abs()
     }
 
-    /// Draws the window, if open; `Some(path)` when its export button was
-    /// pressed, with the file it asks for in `folder`.
+    /// The balls' momentum as the impulses tell it: the first sample's,
+    /// then every later step's impulses added on, afresh after a gap in
+    /// the samples (the plots were closed); and the worst step's gap
+    /// between the momentum's change and its impulses (N s). `None` where
+    /// the engine counts no impulses.
+    pub fn momentum_from_impulses(&self) -> Option<(Vec<(f64, DVec3)>, f64)> {
+        let mut samples = self.samples();
+        let first = samples.next()?;
+        let (mut told, mut last) = (first.momentum, first);
+        let mut worst = 0.0f64;
+        let mut points = vec![(first.time, told)];
+        for s in samples {
+            let given = s.impulses?.total();
+            if s.step == last.step + 1 {
+                told += given;
+                worst = worst.max((s.momentum - last.momentum - given).length());
+            } else {
+                told = s.momentum;
+            }
+            points.push((s.time, told));
+            last = s;
+        }
+        Some((points, worst))
+    }
+
+    /// Draws the plots' window, if open; `Some(path)` when its export
+    /// button was pressed, with the file it asks for in `folder`.
     pub fn show(&mut self, ctx: &egui::Context, folder: &Path) -> Option<PathBuf> {
         if !self.open {
             return None;
         }
         let mut export = None;
-        let now_time = self
-            .samples
-            .iter()
-            .rev()
-            .find(|s| s.step <= self.now)
-            .map_or(0.0, |s| s.time);
         egui::Window::new("plots (F4)")
             .default_width(460.0)
             .show(ctx, |ui| {
-                let cursor = || VLine::new("now", now_time).color(egui::Color32::GRAY);
-                self.columns_plot(
-                    ui,
-                    "Energy (J)",
-                    110.0,
-                    Corner::RightTop,
-                    &[
-                        ("translational", "kinetic_translational"),
-                        ("rotational", "kinetic_rotational"),
-                        ("potential", "potential"),
-                        ("total", "total"),
-                    ],
-                    now_time,
-                );
-                self.columns_plot(
-                    ui,
-                    "Linear momentum (kg m/s): gravity and the room's surfaces change it",
-                    90.0,
-                    Corner::LeftTop,
-                    &[
-                        ("x", "momentum_x"),
-                        ("y", "momentum_y"),
-                        ("z", "momentum_z"),
-                    ],
-                    now_time,
-                );
-                self.columns_plot(
-                    ui,
-                    "A step's contacts and impacts",
-                    80.0,
-                    Corner::LeftTop,
-                    &[
-                        ("contacts", "contacts"),
-                        ("impacts", "impacts"),
-                        ("on surfaces", "surface_impacts"),
-                    ],
-                    now_time,
-                );
-                let tumblers = self.samples.back().map_or(0, |s| s.tilts.len());
-                if tumblers > 0 {
-                    ui.horizontal(|ui| {
-                        ui.label("Tilt (rad) of tumbler");
-                        egui::ComboBox::from_id_salt("tumbler")
-                            .selected_text(self.tumbler.to_string())
-                            .show_ui(ui, |ui| {
-                                for k in 0..tumblers {
-                                    ui.selectable_value(&mut self.tumbler, k, k.to_string());
-                                }
-                            });
-                        ui.label(format!(
-                            "rolling pendulum: T = {:.3} s",
-                            std::f64::consts::TAU / self.rocking
-                        ));
-                    });
-                    let k = self.tumbler;
-                    Plot::new("tilt")
-                        .height(90.0)
-                        .legend(Legend::default().position(Corner::LeftTop))
-                        .show(ui, |plot| {
-                            plot.line(self.line("simulated", FIXED_COLUMNS.len() + k));
-                            if let Some(swing) = self.last_swing(k) {
-                                let theory: Vec<[f64; 2]> = self
-                                    .samples
-                                    .iter()
-                                    .filter(|s| s.time >= swing.at - 0.5)
-                                    .map(|s| [s.time, self.theory(swing, s.time)])
-                                    .collect();
-                                plot.line(Line::new("theory, from the last swing", theory));
-                            }
-                            plot.vline(cursor());
-                        });
-                }
-                if ui.button("export CSV").clicked() {
-                    export = Some(folder.join(format!("rolypoly-series-{}.csv", self.now)));
-                }
+                egui::ScrollArea::vertical().show(ui, |ui| export = self.contents(ui, folder));
             });
         export
+    }
+
+    /// The plots, in the window or the panel's tab.
+    pub fn contents(&mut self, ui: &mut egui::Ui, folder: &Path) -> Option<PathBuf> {
+        let now = self
+            .samples()
+            .filter(|s| s.step <= self.now)
+            .last()
+            .map_or(0.0, |s| s.time);
+        let cursor = || VLine::new("now", now).color(egui::Color32::GRAY);
+        self.columns_plot(
+            ui,
+            "Energy (J)",
+            100.0,
+            Corner::RightTop,
+            &[
+                ("translational", "kinetic_translational"),
+                ("rotational", "kinetic_rotational"),
+                ("potential", "potential"),
+                ("total", "total"),
+            ],
+            now,
+        );
+        self.momentum_plot(ui, now);
+        self.columns_plot(
+            ui,
+            "A step's contacts and impacts",
+            70.0,
+            Corner::LeftTop,
+            &[
+                ("contacts", "contacts"),
+                ("impacts", "impacts"),
+                ("on surfaces", "surface_impacts"),
+            ],
+            now,
+        );
+        self.body_plots(ui, &cursor);
+        let export = ui
+            .button("export CSV")
+            .clicked()
+            .then(|| folder.join(format!("rolypoly-series-{}.csv", self.now)));
+        export
+    }
+
+    /// The balls' momentum, dashed beside it the same told by the impulses,
+    /// and what pushed them a step.
+    fn momentum_plot(&self, ui: &mut egui::Ui, now: f64) {
+        ui.label("The balls' momentum (kg m/s); dashed: the first plus every step's impulses");
+        let told = self.momentum_from_impulses();
+        Plot::new("momentum")
+            .height(90.0)
+            .legend(Legend::default().position(Corner::LeftTop))
+            .show(ui, |plot| {
+                for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
+                    let k = column("momentum_x") + axis;
+                    plot.line(self.line(name, k));
+                }
+                if let Some((points, _)) = &told {
+                    for (axis, name) in ["x told", "y told", "z told"].into_iter().enumerate() {
+                        let points: Vec<[f64; 2]> =
+                            thinned(points.iter()).map(|(t, p)| [*t, p[axis]]).collect();
+                        plot.line(Line::new(name, points).style(LineStyle::dashed_loose()));
+                    }
+                }
+                plot.vline(VLine::new("now", now).color(egui::Color32::GRAY));
+            });
+        match told {
+            Some((_, worst)) => ui.small(format!(
+                "a step's change less its impulses: at most {worst:.1e} N s over the plot"
+            )),
+            None => ui.small("this engine counts no impulses"),
+        };
+        ui.label("What pushed the balls a step (N s, the impulse's length)");
+        let length = |s: &Sample, of: fn(&rolypoly_physics::BallImpulses) -> DVec3| {
+            s.impulses.map_or(f64::NAN, |given| of(&given).length())
+        };
+        Plot::new("impulses")
+            .height(70.0)
+            .legend(Legend::default().position(Corner::LeftTop))
+            .show(ui, |plot| {
+                let lines: [(&str, fn(&rolypoly_physics::BallImpulses) -> DVec3); 3] = [
+                    ("walls and floor", |g| g.surfaces),
+                    ("tumblers", |g| g.tumblers),
+                    ("gravity", |g| g.gravity),
+                ];
+                for (name, of) in lines {
+                    let points: Vec<[f64; 2]> = thinned(self.samples())
+                        .map(|s| [s.time, length(s, of)])
+                        .collect();
+                    plot.line(Line::new(name, points));
+                }
+                plot.vline(VLine::new("now", now).color(egui::Color32::GRAY));
+            });
+    }
+
+    /// The chosen body's height, speed and spin; for a tumbler its tilt
+    /// beside the rolling pendulum's curve.
+    fn body_plots(&mut self, ui: &mut egui::Ui, cursor: &dyn Fn() -> VLine) {
+        let tumblers = self.samples().last().map_or(0, |s| s.tilts.len());
+        ui.horizontal(|ui| {
+            let shown = self.body.map_or("none".to_owned(), Body::name);
+            egui::ComboBox::from_label("body plotted (or what the hand holds, G)")
+                .selected_text(shown)
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut self.body, None, "none");
+                    for t in 0..tumblers {
+                        let name = Body::Tumbler(t).name();
+                        ui.selectable_value(&mut self.body, Some(Body::Tumbler(t)), name);
+                    }
+                    if !matches!(self.body, Some(Body::Ball(_))) {
+                        ui.selectable_value(&mut self.body, Some(Body::Ball(0)), "a ball");
+                    }
+                });
+            if let Some(Body::Ball(i)) = &mut self.body {
+                let label = ui.label("ball number");
+                ui.add(egui::DragValue::new(i)).labelled_by(label.id);
+            }
+        });
+        let Some(body) = self.body else {
+            return;
+        };
+        let motion = |pick: fn(&Motion) -> f64| -> Vec<[f64; 2]> {
+            let of_body = self.kept.iter().filter_map(|k| match k.body {
+                Some((b, m)) if b == body => Some((k.sample.time, m)),
+                _ => None,
+            });
+            let all: Vec<(f64, Motion)> = of_body.collect();
+            thinned(all.iter()).map(|(t, m)| [*t, pick(m)]).collect()
+        };
+        Plot::new("body")
+            .height(80.0)
+            .legend(Legend::default().position(Corner::LeftTop))
+            .show(ui, |plot: &mut PlotUi| {
+                plot.line(Line::new("height (m)", motion(|m| m.height)));
+                plot.line(Line::new("speed (m/s)", motion(|m| m.speed)));
+                plot.line(Line::new("spin (rad/s)", motion(|m| m.spin)));
+                plot.vline(cursor());
+            });
+        let Body::Tumbler(k) = body else {
+            return;
+        };
+        if k >= tumblers {
+            return;
+        }
+        ui.label(format!(
+            "Tilt (rad) of tumbler {k}; rolling pendulum: T = {:.3} s",
+            std::f64::consts::TAU / self.rocking
+        ));
+        Plot::new("tilt")
+            .height(90.0)
+            .legend(Legend::default().position(Corner::LeftTop))
+            .show(ui, |plot| {
+                plot.line(self.line("simulated", FIXED_COLUMNS.len() + k));
+                if let Some(swing) = self.last_swing(k) {
+                    let since: Vec<&Sample> = self
+                        .samples()
+                        .filter(|s| s.time >= swing.at - 0.5)
+                        .collect();
+                    let theory: Vec<[f64; 2]> = thinned(since.iter())
+                        .map(|s| [s.time, self.theory(swing, s.time)])
+                        .collect();
+                    plot.line(Line::new("theory, from the last swing", theory));
+                }
+                plot.vline(cursor());
+            });
     }
 
     /// A plot titled `title` of the series' `columns` (legend name, column),
@@ -222,12 +418,8 @@ impl Plots {
             .height(height)
             .legend(Legend::default().position(legend))
             .show(ui, |plot| {
-                for (name, column) in columns {
-                    let k = FIXED_COLUMNS
-                        .iter()
-                        .position(|c| c == column)
-                        .expect("a series column");
-                    plot.line(self.line(name, k));
+                for (name, name_of_column) in columns {
+                    plot.line(self.line(name, column(name_of_column)));
                 }
                 plot.vline(VLine::new("now", now).color(egui::Color32::GRAY));
             });
@@ -235,13 +427,33 @@ impl Plots {
 
     /// Column `k` of the samples against their time.
     fn line(&self, name: &'static str, k: usize) -> Line<'static> {
-        let points: Vec<[f64; 2]> = self
-            .samples
-            .iter()
-            .filter_map(|s| s.values().get(k).map(|v| [s.time, *v]))
+        let points: Vec<[f64; 2]> = thinned(self.samples())
+            .map(|s| [s.time, s.value(k)])
             .collect();
         Line::new(name, points)
     }
+}
+
+/// The series' column named `name`.
+fn column(name: &str) -> usize {
+    FIXED_COLUMNS
+        .iter()
+        .position(|c| *c == name)
+        .expect("a series column")
+}
+
+/// Every so many of `items`, the last always, so that a line draws at
+/// most [`MOST_POINTS`] or so.
+fn thinned<I>(items: I) -> impl Iterator<Item = I::Item>
+where
+    I: ExactSizeIterator,
+{
+    let n = items.len();
+    let every = n.div_ceil(MOST_POINTS).max(1);
+    items
+        .enumerate()
+        .filter(move |(k, _)| k % every == 0 || k + 1 == n)
+        .map(|(_, item)| item)
 }
 
 #[cfg(test)]
@@ -274,6 +486,62 @@ mod tests {
         // Paused: the same step is sampled once.
         plots.record(&back, &[]);
         assert_eq!(plots.samples().count(), 11);
+    }
+
+    #[test]
+    fn the_momentum_told_by_the_impulses_is_the_balls_own() {
+        for seed in [3, 9] {
+            let mut world = World::new(WorldConfig::default(), seed).unwrap();
+            let mut plots = Plots::default();
+            for _ in 0..400 {
+                world.step();
+                plots.record(&world, &[]);
+            }
+            let (told, worst) = plots.momentum_from_impulses().unwrap();
+            let last = told.last().unwrap().1;
+            let balls = world.balls().momentum();
+            // Landing balls: the floor and gravity move it by newtons a step.
+            let scale: f64 = (0..world.balls().len())
+                .map(|i| world.balls().masses()[i] * 5.0)
+                .sum();
+            assert!(
+                (last - balls).length() <= 1e-9 * scale,
+                "seed {seed}: {last} {balls}"
+            );
+            assert!(worst <= 1e-12 * scale, "seed {seed}: {worst}");
+        }
+    }
+
+    #[test]
+    fn the_plotted_body_is_what_the_hand_holds_or_the_chosen_one() {
+        let mut world = World::new(WorldConfig::default(), 4).unwrap();
+        let mut plots = Plots::default();
+        world.step();
+        plots.record(&world, &[]);
+        let kept = plots.kept.back().unwrap();
+        let (body, motion) = kept.body.unwrap();
+        assert_eq!(body, Body::Tumbler(0));
+        let t = &world.tumblers()[0];
+        assert_eq!(motion.speed, t.linear_velocity().length());
+        plots.body = Some(Body::Ball(7));
+        world.step();
+        plots.record(&world, &[]);
+        let (body, motion) = plots.kept.back().unwrap().body.unwrap();
+        assert_eq!(body, Body::Ball(7));
+        let floor = world.room().min.y;
+        assert_eq!(motion.height, world.balls().positions()[7].y - floor);
+        assert_eq!(motion.spin, world.balls().spins()[7].length());
+    }
+
+    #[test]
+    fn a_long_run_draws_at_most_so_many_points_a_line() {
+        let items: Vec<usize> = (0..3601).collect();
+        let kept: Vec<usize> = thinned(items.iter()).copied().collect();
+        assert!(kept.len() <= MOST_POINTS + 1, "{}", kept.len());
+        assert_eq!(kept.first(), Some(&0));
+        assert_eq!(kept.last(), Some(&3600));
+        let few: Vec<usize> = thinned(items[..10].iter()).copied().collect();
+        assert_eq!(few, items[..10]);
     }
 
     #[test]

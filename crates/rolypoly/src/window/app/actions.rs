@@ -26,6 +26,7 @@ impl App {
             PanelAction::Restart => self.restart(),
             PanelAction::Save(path) => self.save(&path),
             PanelAction::Rewind(tick) => self.rewind_to(tick),
+            PanelAction::ExportPlots(path) => self.export_plots(&path),
         }
     }
 

@@ -259,7 +259,7 @@ impl App {
                 sound.hear(sim);
                 // Every step, not every frame: a frame of a slow window
                 // spans many steps, and a tumbler's swing would alias.
-                if plots.open {
+                if plots.wanted() {
                     plots.record(&sim.world, sim.last_events());
                 }
             },
@@ -309,7 +309,7 @@ impl App {
             self.record_camera();
         }
 
-        if self.plots.open {
+        if self.plots.wanted() {
             // Moves the cursor after going back, which takes no step.
             let sim = &self.sandbox.sim;
             self.plots.record(&sim.world, sim.last_events());
@@ -393,7 +393,7 @@ impl App {
         let painted = r
             .hud
             .draw(&r.window, &r.gpu, &target, [w, h], &self.hud_state, |ui| {
-                action = panel.show(ui, sandbox);
+                action = panel.show(ui, sandbox, plots, folder);
                 profiler.show(ui.ctx());
                 export = plots.show(ui.ctx(), folder);
                 crate::legend::show(ui.ctx(), &debug);
