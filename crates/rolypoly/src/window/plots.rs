@@ -12,17 +12,25 @@
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 
-use egui_plot::{Corner, Legend, Line, LineStyle, Plot, PlotUi, VLine};
+use egui_plot::{Corner, Legend, Line, Plot, PlotUi, VLine};
 use glam::DVec3;
 use rolypoly_core::series::{FIXED_COLUMNS, Sample, SeriesError, SeriesWriter};
-use rolypoly_physics::{Event, World};
+use rolypoly_physics::{BallImpulses, Event, World};
 
 /// How much simulated time the plots keep (s).
 const KEPT_SECONDS: f64 = 30.0;
 
 /// The most points a line draws: 30 s at 120 steps a second are 3 600
-/// samples, and a plot a few hundred pixels wide shows no more than this.
-const MOST_POINTS: usize = 900;
+/// samples, and a plot some 450 pixels wide shows no more than this (a
+/// line's points are what the plots cost a frame to lay out and draw).
+const MOST_POINTS: usize = 300;
+
+/// The colours of x, y and z.
+const AXIS_COLOURS: [egui::Color32; 3] = [
+    egui::Color32::from_rgb(230, 90, 80),
+    egui::Color32::from_rgb(110, 200, 90),
+    egui::Color32::from_rgb(90, 150, 240),
+];
 
 /// The body whose own motion is plotted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -231,8 +239,11 @@ impl Plots {
         let mut export = None;
         egui::Window::new("plots (F4)")
             .default_width(460.0)
+            .default_height(660.0)
             .show(ctx, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| export = self.contents(ui, folder));
+                egui::ScrollArea::vertical()
+                    .auto_shrink([false, true])
+                    .show(ui, |ui| export = self.contents(ui, folder));
             });
         export
     }
@@ -241,65 +252,86 @@ impl Plots {
     pub fn contents(&mut self, ui: &mut egui::Ui, folder: &Path) -> Option<PathBuf> {
         let now = self
             .samples()
-            .filter(|s| s.step <= self.now)
-            .last()
+            .rev()
+            .find(|s| s.step <= self.now)
             .map_or(0.0, |s| s.time);
-        let cursor = || VLine::new("now", now).color(egui::Color32::GRAY);
-        self.columns_plot(
-            ui,
-            "Energy (J)",
-            100.0,
-            Corner::RightTop,
-            &[
-                ("translational", "kinetic_translational"),
-                ("rotational", "kinetic_rotational"),
-                ("potential", "potential"),
-                ("total", "total"),
-            ],
-            now,
-        );
-        self.momentum_plot(ui, now);
-        self.columns_plot(
-            ui,
-            "A step's contacts and impacts",
-            70.0,
-            Corner::LeftTop,
-            &[
-                ("contacts", "contacts"),
-                ("impacts", "impacts"),
-                ("on surfaces", "surface_impacts"),
-            ],
-            now,
-        );
-        self.body_plots(ui, &cursor);
-        let export = ui
-            .button("export CSV")
+        let cursor = || cursor(now);
+        // Each section draws only while open: a plot's lines are what the
+        // plots cost a frame.
+        let section =
+            |ui: &mut egui::Ui, title: &str, open: bool, add: &mut dyn FnMut(&mut egui::Ui)| {
+                egui::CollapsingHeader::new(title)
+                    .default_open(open)
+                    .show(ui, |ui| add(ui));
+            };
+        section(ui, "Energy (J)", true, &mut |ui| {
+            self.columns_plot(
+                ui,
+                "energy",
+                100.0,
+                Corner::RightTop,
+                &[
+                    ("translational", "kinetic_translational"),
+                    ("rotational", "kinetic_rotational"),
+                    ("potential", "potential"),
+                    ("total", "total"),
+                ],
+                now,
+            )
+        });
+        section(ui, "Momentum (kg m/s)", true, &mut |ui| {
+            self.momentum_plot(ui, now)
+        });
+        section(ui, "What pushed the balls a step (N s)", false, &mut |ui| {
+            self.impulses_plot(ui, now)
+        });
+        section(ui, "A step's contacts and impacts", false, &mut |ui| {
+            self.columns_plot(
+                ui,
+                "counts",
+                70.0,
+                Corner::LeftTop,
+                &[
+                    ("contacts", "contacts"),
+                    ("impacts", "impacts"),
+                    ("on surfaces", "surface_impacts"),
+                ],
+                now,
+            )
+        });
+        egui::CollapsingHeader::new("One body")
+            .default_open(true)
+            .show(ui, |ui| self.body_plots(ui, &cursor));
+        ui.button("export CSV")
             .clicked()
-            .then(|| folder.join(format!("rolypoly-series-{}.csv", self.now)));
-        export
+            .then(|| folder.join(format!("rolypoly-series-{}.csv", self.now)))
     }
 
-    /// The balls' momentum, dashed beside it the same told by the impulses,
-    /// and what pushed them a step.
+    /// The balls' momentum, beside it the same told by the impulses, and
+    /// what pushed them a step.
     fn momentum_plot(&self, ui: &mut egui::Ui, now: f64) {
-        ui.label("The balls' momentum (kg m/s); dashed: the first plus every step's impulses");
+        ui.small("wide: the balls' own; thin: the first plus every step's impulses since");
         let told = self.momentum_from_impulses();
         Plot::new("momentum")
-            .height(90.0)
+            .height(100.0)
             .legend(Legend::default().position(Corner::LeftTop))
             .show(ui, |plot| {
                 for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
+                    let colour = AXIS_COLOURS[axis];
                     let k = column("momentum_x") + axis;
-                    plot.line(self.line(name, k));
-                }
-                if let Some((points, _)) = &told {
-                    for (axis, name) in ["x told", "y told", "z told"].into_iter().enumerate() {
+                    // The thin line first: the legend takes its colour.
+                    if let Some((points, _)) = &told {
                         let points: Vec<[f64; 2]> =
                             thinned(points.iter()).map(|(t, p)| [*t, p[axis]]).collect();
-                        plot.line(Line::new(name, points).style(LineStyle::dashed_loose()));
+                        plot.line(Line::new(name, points).color(colour).width(1.0));
                     }
+                    plot.line(
+                        self.line(name, k)
+                            .color(colour.gamma_multiply(0.45))
+                            .width(4.0),
+                    );
                 }
-                plot.vline(VLine::new("now", now).color(egui::Color32::GRAY));
+                plot.vline(cursor(now));
             });
         match told {
             Some((_, worst)) => ui.small(format!(
@@ -307,15 +339,18 @@ impl Plots {
             )),
             None => ui.small("this engine counts no impulses"),
         };
-        ui.label("What pushed the balls a step (N s, the impulse's length)");
-        let length = |s: &Sample, of: fn(&rolypoly_physics::BallImpulses) -> DVec3| {
-            s.impulses.map_or(f64::NAN, |given| of(&given).length())
-        };
+    }
+
+    /// The lengths of what pushed the balls a step.
+    fn impulses_plot(&self, ui: &mut egui::Ui, now: f64) {
+        ui.small("each impulse's length");
+        let length =
+            |s: &Sample, of: ImpulseOf| s.impulses.map_or(f64::NAN, |given| of(&given).length());
         Plot::new("impulses")
             .height(70.0)
             .legend(Legend::default().position(Corner::LeftTop))
             .show(ui, |plot| {
-                let lines: [(&str, fn(&rolypoly_physics::BallImpulses) -> DVec3); 3] = [
+                let lines: [(&str, ImpulseOf); 3] = [
                     ("walls and floor", |g| g.surfaces),
                     ("tumblers", |g| g.tumblers),
                     ("gravity", |g| g.gravity),
@@ -326,7 +361,7 @@ impl Plots {
                         .collect();
                     plot.line(Line::new(name, points));
                 }
-                plot.vline(VLine::new("now", now).color(egui::Color32::GRAY));
+                plot.vline(cursor(now));
             });
     }
 
@@ -402,26 +437,25 @@ impl Plots {
             });
     }
 
-    /// A plot titled `title` of the series' `columns` (legend name, column),
-    /// with the cursor at `now`.
+    /// A plot (`id`) of the series' `columns` (legend name, column), with
+    /// the cursor at `now`.
     fn columns_plot(
         &self,
         ui: &mut egui::Ui,
-        title: &'static str,
+        id: &'static str,
         height: f32,
         legend: Corner,
         columns: &[(&'static str, &str)],
         now: f64,
     ) {
-        ui.label(title);
-        Plot::new(title)
+        Plot::new(id)
             .height(height)
             .legend(Legend::default().position(legend))
             .show(ui, |plot| {
                 for (name, name_of_column) in columns {
                     plot.line(self.line(name, column(name_of_column)));
                 }
-                plot.vline(VLine::new("now", now).color(egui::Color32::GRAY));
+                plot.vline(cursor(now));
             });
     }
 
@@ -432,6 +466,14 @@ impl Plots {
             .collect();
         Line::new(name, points)
     }
+}
+
+/// One kind of a step's impulses.
+type ImpulseOf = fn(&BallImpulses) -> DVec3;
+
+/// The line that marks the moment shown (unnamed: not in the legend).
+fn cursor(now: f64) -> VLine {
+    VLine::new("", now).color(egui::Color32::GRAY)
 }
 
 /// The series' column named `name`.
