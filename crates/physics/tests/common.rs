@@ -12,6 +12,23 @@ pub fn empty_room() -> WorldConfig {
     cfg
 }
 
+/// The default room with every loss switched off and `n` balls in it:
+/// restitution 1 for balls and room, no friction or rolling resistance,
+/// every impact bouncing.
+pub fn elastic_room(n: usize, gravity: f64) -> WorldConfig {
+    let mut cfg = empty_room();
+    cfg.gravity = gravity;
+    cfg.balls.count = n;
+    cfg.balls.restitution = 1.0;
+    cfg.room.restitution = 1.0;
+    cfg.room.friction = 0.0;
+    cfg.balls.friction = 0.0;
+    cfg.balls.rolling_resistance = 0.0;
+    cfg.room.rolling_resistance = 0.0;
+    cfg.solver.bounce_threshold = 0.0;
+    cfg
+}
+
 /// Enough balls in a small room that contacts are found and solved on
 /// several threads (both solver stages switch at a few thousand).
 pub fn crowded_pit() -> WorldConfig {

@@ -4,9 +4,9 @@
 
 mod common;
 
-use common::{build, empty_room};
+use common::{build, elastic_room, empty_room};
 use glam::DVec3;
-use rolypoly_physics::{World, WorldConfig};
+use rolypoly_physics::World;
 
 /// A weightless room so big that walls play no part, with balls of
 /// restitution `e` and no friction anywhere.
@@ -200,22 +200,6 @@ fn unequal_masses_head_on_give_the_one_dimensional_velocities() {
         );
         assert!(v[0].y.abs() < 1e-12 && v[1].z.abs() < 1e-12);
     }
-}
-
-/// The default room with every loss switched off: restitution 1 for balls
-/// and room, no friction or rolling resistance, every impact bouncing.
-fn elastic_room(n: usize, gravity: f64) -> WorldConfig {
-    let mut cfg = empty_room();
-    cfg.gravity = gravity;
-    cfg.balls.count = n;
-    cfg.balls.restitution = 1.0;
-    cfg.room.restitution = 1.0;
-    cfg.room.friction = 0.0;
-    cfg.balls.friction = 0.0;
-    cfg.balls.rolling_resistance = 0.0;
-    cfg.room.rolling_resistance = 0.0;
-    cfg.solver.bounce_threshold = 0.0;
-    cfg
 }
 
 #[test]

@@ -57,42 +57,27 @@ fn balance(w: &mut World, seconds: f64) -> Balance {
     seen
 }
 
-/// Restitution 1 everywhere, no friction, no rolling resistance, every
-/// impact bouncing however slow.
-fn elastic(gravity: f64) -> WorldConfig {
-    let mut cfg = WorldConfig {
-        gravity,
-        ..WorldConfig::default()
-    };
-    cfg.balls.restitution = 1.0;
-    cfg.room.restitution = 1.0;
-    cfg.tumblers.restitution = 1.0;
-    cfg.tumblers.damping = 0.0;
-    cfg.room.friction = 0.0;
-    cfg.balls.friction = 0.0;
-    cfg.balls.rolling_resistance = 0.0;
-    cfg.room.rolling_resistance = 0.0;
-    cfg.solver.bounce_threshold = 0.0;
-    cfg
-}
-
 /// The law's tolerance, as a share of the momentum's scale: rounding.
 const ROUNDING: f64 = 1e-9;
+
+/// An elastic gas of `balls` balls, seed `seed`, under `gravity`: what its
+/// steps showed, the balance held and the walls having turned it.
+fn elastic_gas(balls: usize, seed: u64, gravity: f64) -> Balance {
+    let seen = balance(&mut build(common::elastic_room(balls, gravity), seed), 4.0);
+    println!("{balls} balls, seed {seed}, g {gravity}: {seen:?}");
+    assert!(seen.gap <= ROUNDING, "{balls} balls, seed {seed}: {seen:?}");
+    assert!(seen.surfaces > 1e-3, "{balls} balls, seed {seed}: {seen:?}");
+    assert_eq!(seen.tumblers, 0.0);
+    seen
+}
 
 #[test]
 fn in_a_weightless_elastic_gas_only_the_walls_change_the_momentum() {
     for (balls, seed) in [(150, 2), (400, 5), (1500, 9)] {
-        let mut cfg = elastic(0.0);
-        cfg.tumblers.placements.clear();
-        cfg.balls.count = balls;
-        let seen = balance(&mut build(cfg, seed), 4.0);
-        println!("{balls} balls, seed {seed}: {seen:?}");
-        assert!(seen.gap <= ROUNDING, "{balls} balls, seed {seed}: {seen:?}");
+        let seen = elastic_gas(balls, seed, 0.0);
         // The walls turned it, and nothing else did: the guard never
         // slows an elastic gas beyond rounding.
-        assert!(seen.surfaces > 1e-3, "{balls} balls, seed {seed}: {seen:?}");
         assert!(seen.guard <= 1e-12, "{balls} balls, seed {seed}: {seen:?}");
-        assert_eq!(seen.tumblers, 0.0);
     }
 }
 
@@ -101,20 +86,16 @@ fn with_gravity_the_change_also_holds_m_g_dt() {
     // 400 balls of seed 3 hold one bouncing ever faster on the floor, its
     // bounces left unfinished at the step's end: the floor holds it up.
     for (balls, seed) in [(120, 3), (400, 3), (600, 8)] {
-        let mut cfg = elastic(9.81);
-        cfg.tumblers.placements.clear();
-        cfg.balls.count = balls;
-        let seen = balance(&mut build(cfg, seed), 4.0);
-        println!("{balls} balls, seed {seed}: {seen:?}");
-        assert!(seen.gap <= ROUNDING, "{balls} balls, seed {seed}: {seen:?}");
-        assert!(seen.surfaces > 1e-3, "{balls} balls, seed {seed}: {seen:?}");
+        elastic_gas(balls, seed, 9.81);
     }
 }
 
 #[test]
 fn tumblers_friction_and_settling_piles_keep_the_balance() {
-    let mut bouncing = elastic(9.81);
-    bouncing.balls.count = 200;
+    let mut bouncing = common::elastic_room(200, 9.81);
+    bouncing.tumblers = WorldConfig::default().tumblers;
+    bouncing.tumblers.restitution = 1.0;
+    bouncing.tumblers.damping = 0.0;
     let mut pit = common::crowded_pit();
     pit.balls.count = 2500;
     for (name, cfg, seconds) in [
