@@ -78,17 +78,9 @@ fn a_settling_heap_never_gains_energy() {
 fn elastic_weightless_frictionless_scene_keeps_its_energy() {
     // Tumblers are defined by gravity (it is what rights them), so this scene
     // is the balls alone.
-    let mut cfg = WorldConfig {
-        gravity: 0.0,
-        ..WorldConfig::default()
-    };
-    cfg.tumblers.placements.clear();
-    cfg.balls.restitution = 1.0;
-    cfg.room.restitution = 1.0;
-    cfg.room.friction = 0.0;
-    cfg.balls.friction = 0.0;
-    cfg.balls.rolling_resistance = 0.0;
-    cfg.room.rolling_resistance = 0.0;
+    let mut cfg = common::elastic_room(WorldConfig::default().balls.count, 0.0);
+    // As the default's: a slow impact rests.
+    cfg.solver.bounce_threshold = WorldConfig::default().solver.bounce_threshold;
     let mut w = build(cfg, 5);
     let e0 = w.energy().total();
     let growth = worst_step_growth(&mut w, 10.0);
