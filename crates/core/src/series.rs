@@ -17,7 +17,7 @@ use rolypoly_physics::{BallImpulses, Event, EventKind, World};
 
 /// The columns every series has, in order, before one `tumbler_K_tilt` a
 /// tumbler. Units: s, J, kg m/s (N s for the impulses), counts.
-pub const FIXED_COLUMNS: [&str; 22] = [
+pub const FIXED_COLUMNS: [&str; 23] = [
     "step",
     "time",
     "kinetic_translational",
@@ -37,6 +37,7 @@ pub const FIXED_COLUMNS: [&str; 22] = [
     "guard_impulse_y",
     "guard_impulse_z",
     "gravity_impulse_y",
+    "poured_momentum_y",
     "contacts",
     "impacts",
     "surface_impacts",
@@ -165,9 +166,10 @@ impl Sample {
             12..=14 => impulse(|g| g.tumblers, k - 12),
             15..=17 => impulse(|g| g.guard, k - 15),
             18 => impulse(|g| g.gravity, 1),
-            19 => self.contacts as f64,
-            20 => self.impacts as f64,
-            21 => self.surface_impacts as f64,
+            19 => impulse(|g| g.poured, 1),
+            20 => self.contacts as f64,
+            21 => self.impacts as f64,
+            22 => self.surface_impacts as f64,
             _ => self
                 .tilts
                 .get(k - FIXED_COLUMNS.len())
@@ -291,6 +293,7 @@ mod tests {
         assert_eq!(at("tumbler_impulse_z"), given.tumblers.z);
         assert_eq!(at("guard_impulse_y"), given.guard.y);
         assert_eq!(at("gravity_impulse_y"), given.gravity.y);
+        assert_eq!(at("poured_momentum_y"), given.poured.y);
         assert_eq!(at("surface_impacts"), 0.0);
         assert_eq!(at("tumbler_4_tilt"), world.tumblers()[4].tilt());
         assert!(sample.clone().without_impulses().value(10).is_nan());

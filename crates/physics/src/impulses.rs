@@ -1,6 +1,6 @@
 //! What pushed the balls over a step, besides one another: the impulses of
 //! the room's surfaces and of the tumblers, the energy guard's and
-//! gravity's, summed over the balls as each part of the step gives them.
+//! gravity's, and what poured balls bring in, summed over the balls as each part of the step gives them.
 //! They are what changes the balls' momentum (Newton's second law in
 //! integral form), which the series and the window's plots show beside it.
 
@@ -26,6 +26,9 @@ pub struct BallImpulses {
     pub guard: DVec3,
     /// Gravity's on the live balls: `M g dt`.
     pub gravity: DVec3,
+    /// The momentum the spout's new balls brought in (a scene that pours,
+    /// `balls.pour`).
+    pub poured: DVec3,
 }
 
 impl std::ops::AddAssign for BallImpulses {
@@ -34,6 +37,7 @@ impl std::ops::AddAssign for BallImpulses {
         self.tumblers += other.tumblers;
         self.guard += other.guard;
         self.gravity += other.gravity;
+        self.poured += other.poured;
     }
 }
 
@@ -41,6 +45,6 @@ impl BallImpulses {
     /// All of them: the change of the balls' momentum over the step, to
     /// rounding (N s).
     pub fn total(&self) -> DVec3 {
-        self.surfaces + self.tumblers + self.guard + self.gravity
+        self.surfaces + self.tumblers + self.guard + self.gravity + self.poured
     }
 }

@@ -382,7 +382,7 @@ impl World {
     /// ``momentum_y``, ``momentum_z``, the step's impulses on the balls
     /// ``surface_impulse_x`` (``_y``, ``_z``), ``tumbler_impulse_x``,
     /// ``guard_impulse_x`` (each with ``_y`` and ``_z``) and
-    /// ``gravity_impulse_y``, ``contacts``, ``impacts``,
+    /// ``gravity_impulse_y``, ``poured_momentum_y``, ``contacts``, ``impacts``,
     /// ``surface_impacts``, then
     /// ``tumbler_K_tilt`` a tumbler; with ``frame=True``, a pandas
     /// DataFrame of the same columns.

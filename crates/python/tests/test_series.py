@@ -57,7 +57,7 @@ def test_the_momentum_moves_by_the_impulses_the_series_counts(seed):
     momentum = np.stack([s[f"momentum_{a}"] for a in "xyz"], axis=1)
     given = sum(np.stack([s[f"{k}_impulse_{a}"] for a in "xyz"], axis=1)
                 for k in ("surface", "tumbler", "guard"))
-    given[:, 1] += s["gravity_impulse_y"]
+    given[:, 1] += s["gravity_impulse_y"] + s["poured_momentum_y"]
     gap = np.diff(momentum, axis=0) - given[1:]
     scale = np.abs(given).max()
     assert scale > 0.1

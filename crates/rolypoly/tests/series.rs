@@ -94,6 +94,7 @@ fn the_columns_are_documented_and_a_line_is_written_every_n_steps_and_at_the_las
         "guard_impulse_y",
         "guard_impulse_z",
         "gravity_impulse_y",
+        "poured_momentum_y",
         "contacts",
         "impacts",
         "surface_impacts",
@@ -164,10 +165,11 @@ fn momentum_balance(run: &Series) -> Vec<(DVec3, DVec3)> {
         vectors("tumbler_impulse"),
         vectors("guard_impulse"),
     );
+    let poured = run.column("poured_momentum_y");
     (1..momentum.len())
         .map(|k| {
             // Gravity's is held to its own law by the callers.
-            let given = surfaces[k] + tumblers[k] + guard[k];
+            let given = surfaces[k] + tumblers[k] + guard[k] + DVec3::Y * poured[k];
             (momentum[k] - momentum[k - 1] - given, surfaces[k])
         })
         .collect()

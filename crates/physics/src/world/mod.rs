@@ -181,8 +181,9 @@ pub struct World {
     /// How long the last step's stages took.
     times: StepTimes,
     /// What the room's surfaces and the tumblers gave the balls in the
-    /// last step.
+    /// last step, and the momentum its poured balls brought in.
     impulses: BallImpulses,
+    poured: DVec3,
     scratch: StepScratch,
 }
 
@@ -214,6 +215,7 @@ impl Clone for World {
             ball_hold: self.ball_hold,
             times: self.times,
             impulses: self.impulses,
+            poured: self.poured,
             scratch: StepScratch::sized_for(self.scratch.hit_wall.len(), self.tumblers.len()),
         }
     }
@@ -329,6 +331,7 @@ impl World {
             ball_hold: None,
             times: StepTimes::default(),
             impulses: BallImpulses::default(),
+            poured: DVec3::ZERO,
             scratch,
             room,
             shape: Arc::new(shape),
@@ -509,6 +512,7 @@ impl World {
         self.times = StepTimes::default();
         let events_before = self.events.len();
         let dt = self.config.solver.dt;
+        self.poured = DVec3::ZERO;
         self.pour_due_balls();
         // The hand feeds energy in: a held step is not held to the world's.
         self.pull_held_ball(dt);
@@ -648,6 +652,7 @@ impl World {
         let mass: f64 = live.map(|i| self.balls.mass[i]).sum();
         self.impulses = BallImpulses {
             gravity: mass * g * dt,
+            poured: self.poured,
             ..BallImpulses::default()
         };
         self.grid.rebuild(&self.balls.position, &self.balls.alive);

@@ -107,6 +107,7 @@ impl World {
             self.balls
                 .set(ball, at, DVec3::new(0.0, -STREAM_SPEED, 0.0));
             self.balls.alive[ball] = true;
+            self.poured += self.balls.mass[ball] * self.balls.velocity[ball];
             self.pour.next += 1;
             self.pour.owed -= 1.0;
         }
