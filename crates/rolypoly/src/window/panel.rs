@@ -52,8 +52,8 @@ pub enum PanelAction {
     ExportPlots(PathBuf),
 }
 
-/// The panel's tabs: the sandbox's settings, or the plots (as F4's window
-/// shows them).
+/// The panel's tabs: the sandbox's settings, or the plots (as their
+/// window, key F4, shows them).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Tab {
     #[default]
