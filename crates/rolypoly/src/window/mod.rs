@@ -9,7 +9,7 @@ mod hud;
 mod log;
 mod orbit_camera;
 mod panel;
-mod plots;
+pub mod plots;
 mod profiler;
 mod quality;
 mod sound;

@@ -9,10 +9,14 @@
 //! (rewind) shows where the run stands in what was plotted; steps taken
 //! from there replace what came after.
 
+mod envelope;
+
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 
-use egui_plot::{Corner, Legend, Line, Plot, PlotUi, VLine};
+use envelope::Envelope;
+
+use egui_plot::{Corner, Legend, Line, Plot, VLine};
 use glam::DVec3;
 use rolypoly_core::series::{FIXED_COLUMNS, Sample, SeriesError, SeriesWriter};
 use rolypoly_physics::{BallImpulses, Event, World};
@@ -20,10 +24,51 @@ use rolypoly_physics::{BallImpulses, Event, World};
 /// How much simulated time the plots keep (s).
 const KEPT_SECONDS: f64 = 30.0;
 
-/// The most points a line draws: 30 s at 120 steps a second are 3 600
-/// samples, and a plot some 450 pixels wide shows no more than this (a
-/// line's points are what the plots cost a frame to lay out and draw).
-const MOST_POINTS: usize = 300;
+/// The most points a line draws, about: 30 s at 120 steps a second are
+/// 3 600 samples, and a plot some 450 pixels wide shows no more than a
+/// point every two pixels (a line's points are what the plots cost a frame
+/// to lay out and tessellate). Each slice of `KEPT_SECONDS` over half this
+/// draws its lowest and highest point.
+const MOST_POINTS: usize = 200;
+
+/// The width of a line's slices (s): see [`MOST_POINTS`].
+const SLICE_SECONDS: f64 = KEPT_SECONDS / (MOST_POINTS / 2) as f64;
+
+/// The energy plot's lines: their names, and the series' columns.
+const ENERGY: [(&str, &str); 4] = [
+    ("translational", "kinetic_translational"),
+    ("rotational", "kinetic_rotational"),
+    ("potential", "potential"),
+    ("total", "total"),
+];
+
+/// The counts plot's lines: their names, and the series' columns.
+const COUNTS: [(&str, &str); 3] = [
+    ("contacts", "contacts"),
+    ("impacts", "impacts"),
+    ("on surfaces", "surface_impacts"),
+];
+
+/// The impulses plot's lines: their names, and which impulses.
+const IMPULSES: [(&str, ImpulseOf); 3] = [
+    ("walls and floor", |g| g.surfaces),
+    ("tumblers", |g| g.tumblers),
+    ("gravity", |g| g.gravity),
+];
+
+/// The body plot's lines: their names, and what of the motion.
+const MOTION: [(&str, MotionOf); 3] = [
+    ("height (m)", |m| m.height),
+    ("speed (m/s)", |m| m.speed),
+    ("spin (rad/s)", |m| m.spin),
+];
+
+/// A sample is a pass over the balls: up to this many the plots take one
+/// every step, above it every n-th step, n the balls over this rounded up,
+/// so that sampling costs a step at most what this many balls' sampling
+/// does (at 10 000 balls every fifth step, the steps `simulate --series
+/// --series-every 5` writes).
+const BALLS_SAMPLED_EVERY_STEP: usize = 2_000;
 
 /// The colours of x, y and z.
 const AXIS_COLOURS: [egui::Color32; 3] = [
@@ -35,15 +80,20 @@ const AXIS_COLOURS: [egui::Color32; 3] = [
 /// The body whose own motion is plotted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Body {
+    /// The ball of this number.
     Ball(usize),
+    /// The tumbler of this number.
     Tumbler(usize),
 }
 
 /// A body's height above the floor (m), speed (m/s) and spin (rad/s).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Motion {
+    /// Its centre's (a tumbler's: its centre of mass's) height (m).
     pub height: f64,
+    /// Its speed (m/s).
     pub speed: f64,
+    /// Its angular speed (rad/s).
     pub spin: f64,
 }
 
@@ -80,6 +130,14 @@ impl Body {
 struct Kept {
     sample: Sample,
     body: Option<(Body, Motion)>,
+    /// The balls' momentum as the impulses tell it: the first sample's
+    /// (afresh after a step not seen: the plots were closed, the world went
+    /// back), then every later step's impulses added on; `None` where the
+    /// engine counts no impulses.
+    told: Option<DVec3>,
+    /// The momentum's change since the sample before less the impulses of
+    /// the steps between (N s); 0 where it is told afresh.
+    gap: f64,
 }
 
 /// The plots and the samples they show.
@@ -96,6 +154,95 @@ pub struct Plots {
     body: Option<Body>,
     /// The rolling pendulum's angular frequency (rad/s) for the tumblers.
     rocking: f64,
+    /// The impulses of the steps seen since the last sample, if every one
+    /// was.
+    since: Option<BallImpulses>,
+    /// The lines drawn, kept up with the samples.
+    lines: Lines,
+}
+
+/// Every line the plots draw, as the envelope of the samples kept.
+struct Lines {
+    /// The body whose motion they hold.
+    body: Option<Body>,
+    energy: [Envelope; 4],
+    momentum: [Envelope; 3],
+    told: [Envelope; 3],
+    impulses: [Envelope; 3],
+    counts: [Envelope; 3],
+    motion: [Envelope; 3],
+    tilts: Vec<Envelope>,
+}
+
+impl Lines {
+    /// No lines, the body's motion to be of `body`.
+    fn new(body: Option<Body>) -> Lines {
+        let empty = || Envelope::new(SLICE_SECONDS);
+        Lines {
+            body,
+            energy: std::array::from_fn(|_| empty()),
+            momentum: std::array::from_fn(|_| empty()),
+            told: std::array::from_fn(|_| empty()),
+            impulses: std::array::from_fn(|_| empty()),
+            counts: std::array::from_fn(|_| empty()),
+            motion: std::array::from_fn(|_| empty()),
+            tilts: Vec::new(),
+        }
+    }
+
+    /// The lines through `kept`, the motion of `body`.
+    fn through<'k>(kept: impl Iterator<Item = &'k Kept>, body: Option<Body>) -> Lines {
+        let mut lines = Lines::new(body);
+        for k in kept {
+            lines.push(k);
+        }
+        lines
+    }
+
+    /// Adds a sample later than all before.
+    fn push(&mut self, k: &Kept) {
+        let (s, t) = (&k.sample, k.sample.time);
+        for (line, (_, name)) in self.energy.iter_mut().zip(ENERGY) {
+            line.push(t, s.value(column(name)));
+        }
+        for (line, (_, name)) in self.counts.iter_mut().zip(COUNTS) {
+            line.push(t, s.value(column(name)));
+        }
+        for axis in 0..3 {
+            self.momentum[axis].push(t, s.momentum[axis]);
+            self.told[axis].push(t, k.told.map_or(f64::NAN, |p| p[axis]));
+        }
+        for (line, (_, of)) in self.impulses.iter_mut().zip(IMPULSES) {
+            line.push(t, s.impulses.map_or(f64::NAN, |given| of(&given).length()));
+        }
+        let motion = k.body.filter(|(b, _)| Some(*b) == self.body);
+        for (line, (_, of)) in self.motion.iter_mut().zip(MOTION) {
+            line.push(t, motion.map_or(f64::NAN, |(_, m)| of(&m)));
+        }
+        self.tilts
+            .resize_with(s.tilts.len(), || Envelope::new(SLICE_SECONDS));
+        for (line, tilt) in self.tilts.iter_mut().zip(&s.tilts) {
+            line.push(t, *tilt);
+        }
+    }
+
+    /// Forgets the slices that end before `time`.
+    fn forget_before(&mut self, time: f64) {
+        let Lines {
+            energy,
+            momentum,
+            told,
+            impulses,
+            counts,
+            motion,
+            tilts,
+            ..
+        } = self;
+        let fixed: [&mut [Envelope]; 6] = [energy, momentum, told, impulses, counts, motion];
+        for line in fixed.into_iter().flatten().chain(tilts) {
+            line.forget_before(time);
+        }
+    }
 }
 
 impl Default for Plots {
@@ -107,6 +254,8 @@ impl Default for Plots {
             now: 0,
             body: Some(Body::Tumbler(0)),
             rocking: 0.0,
+            since: None,
+            lines: Lines::new(Some(Body::Tumbler(0))),
         }
     }
 }
@@ -128,10 +277,12 @@ impl Plots {
         self.open || self.docked
     }
 
-    /// Takes a sample of `world`, whose last step reported `events`, if it
-    /// has stepped since the last one. A world that went back moves the
-    /// cursor only; a step from there drops the samples after it. A body
-    /// the hand holds becomes the plotted one.
+    /// Sees `world`, whose last step reported `events`, and takes a sample
+    /// of it if it has stepped since the last one and the step is one
+    /// sampled (every step up to 2 000 balls, fewer above); the steps
+    /// between add their impulses to the next sample's. A world that went
+    /// back moves the cursor only; a step from there drops the samples
+    /// after it. A body the hand holds becomes the plotted one.
     pub fn record(&mut self, world: &World, events: &[Event]) {
         let step = world.step_count();
         let (seen, went_back) = (self.now, step < self.now);
@@ -144,19 +295,61 @@ impl Plots {
         } else if let Some(t) = world.grabbed() {
             self.body = Some(Body::Tumbler(t));
         }
+        if went_back {
+            self.since = None;
+        }
         if step == seen && !self.kept.is_empty() || went_back {
             return;
         }
+        let before = self.kept.len();
         while self.kept.back().is_some_and(|k| k.sample.step >= step) {
             self.kept.pop_back();
+        }
+        if self.kept.len() < before {
+            self.redraw_lines();
+        }
+        self.since = self.since.filter(|_| step == seen + 1).map(|mut since| {
+            since += world.ball_impulses();
+            since
+        });
+        let every = world
+            .balls()
+            .len()
+            .div_ceil(BALLS_SAMPLED_EVERY_STEP)
+            .max(1) as u64;
+        if !step.is_multiple_of(every) && !self.kept.is_empty() {
+            return;
         }
         let body = self
             .body
             .and_then(|body| body.motion(world).map(|motion| (body, motion)));
-        self.kept.push_back(Kept {
-            sample: Sample::of(world, events),
+        let sample = Sample::of(world, events);
+        let last = self.kept.back();
+        let (told, gap) = match (
+            sample.impulses,
+            self.since.take(),
+            last.and_then(|k| k.told),
+        ) {
+            (None, ..) => (None, 0.0),
+            (Some(_), Some(given), Some(told)) => {
+                let given = given.total();
+                let change = sample.momentum - last.map_or(DVec3::ZERO, |k| k.sample.momentum);
+                (Some(told + given), (change - given).length())
+            }
+            (Some(_), ..) => (Some(sample.momentum), 0.0),
+        };
+        let kept = Kept {
+            sample,
             body,
-        });
+            told,
+            gap,
+        };
+        if self.lines.body != self.body {
+            self.redraw_lines();
+        }
+        self.lines.push(&kept);
+        self.kept.push_back(kept);
+        self.since = Some(BallImpulses::default());
         let newest = self.kept.back().map_or(0.0, |k| k.sample.time);
         while self
             .kept
@@ -165,10 +358,17 @@ impl Plots {
         {
             self.kept.pop_front();
         }
+        self.lines.forget_before(newest - KEPT_SECONDS);
+    }
+
+    /// Draws the lines afresh through the samples kept: after some were
+    /// dropped, or for another body.
+    fn redraw_lines(&mut self) {
+        self.lines = Lines::through(self.kept.iter(), self.body);
     }
 
     /// The samples kept, oldest first.
-    pub fn samples(&self) -> impl ExactSizeIterator<Item = &Sample> + DoubleEndedIterator {
+    pub fn samples(&self) -> impl ExactSizeIterator<Item = &Sample> + DoubleEndedIterator + Clone {
         self.kept.iter().map(|k| &k.sample)
     }
 
@@ -189,12 +389,14 @@ impl Plots {
     /// The last peak of tumbler `k`'s tilt among the samples kept: a
     /// sample above both neighbours, past the first.
     pub fn last_swing(&self, k: usize) -> Option<Swing> {
-        let tilt = |s: &Sample| s.tilts.get(k).copied();
-        let shown: Vec<&Sample> = self.samples().filter(|s| s.step <= self.now).collect();
-        shown.windows(3).rev().find_map(|w| {
-            let (a, b, c) = (tilt(w[0])?, tilt(w[1])?, tilt(w[2])?);
+        let shown = self
+            .kept
+            .partition_point(|kept| kept.sample.step <= self.now);
+        let tilt = |i: usize| self.kept[i].sample.tilts.get(k).copied();
+        (1..shown.saturating_sub(1)).rev().find_map(|i| {
+            let (a, b, c) = (tilt(i - 1)?, tilt(i)?, tilt(i + 1)?);
             (b > a && b >= c && b > 1e-4).then_some(Swing {
-                at: w[1].time,
+                at: self.kept[i].sample.time,
                 amplitude: b,
             })
         })
@@ -205,29 +407,21 @@ impl Plots {
         (swing.amplitude * (self.rocking * (t - swing.at)).cos()).abs()
     }
 
-    /// The balls' momentum as the impulses tell it: the first sample's,
-    /// then every later step's impulses added on, afresh after a gap in
-    /// the samples (the plots were closed); and the worst step's gap
-    /// between the momentum's change and its impulses (N s). `None` where
-    /// the engine counts no impulses.
-    pub fn momentum_from_impulses(&self) -> Option<(Vec<(f64, DVec3)>, f64)> {
-        let mut samples = self.samples();
-        let first = samples.next()?;
-        let (mut told, mut last) = (first.momentum, first);
-        let mut worst = 0.0f64;
-        let mut points = vec![(first.time, told)];
-        for s in samples {
-            let given = s.impulses?.total();
-            if s.step == last.step + 1 {
-                told += given;
-                worst = worst.max((s.momentum - last.momentum - given).length());
-            } else {
-                told = s.momentum;
-            }
-            points.push((s.time, told));
-            last = s;
-        }
-        Some((points, worst))
+    /// The balls' momentum as the impulses tell it at each sample kept: the
+    /// first sample's (afresh after a step not seen), then every later
+    /// step's impulses added on; and the worst gap between the momentum's change
+    /// from one sample to the next and the impulses of the steps between
+    /// (N s). `None` where the engine counts no impulses.
+    pub fn momentum_from_impulses(
+        &self,
+    ) -> Option<(impl Iterator<Item = (f64, DVec3)> + Clone + '_, f64)> {
+        self.kept.back()?.told?;
+        let worst = self.kept.iter().map(|k| k.gap).fold(0.0, f64::max);
+        let told = self
+            .kept
+            .iter()
+            .map(|k| (k.sample.time, k.told.unwrap_or(DVec3::NAN)));
+        Some((told, worst))
     }
 
     /// Draws the plots' window, if open; `Some(path)` when its export
@@ -255,7 +449,6 @@ impl Plots {
             .rev()
             .find(|s| s.step <= self.now)
             .map_or(0.0, |s| s.time);
-        let cursor = || cursor(now);
         // Each section draws only while open: a plot's lines are what the
         // plots cost a frame.
         let section =
@@ -264,18 +457,16 @@ impl Plots {
                     .default_open(open)
                     .show(ui, |ui| add(ui));
             };
+        let lines = &self.lines;
         section(ui, "Energy (J)", true, &mut |ui| {
-            self.columns_plot(
+            let names = ENERGY.map(|(name, _)| name);
+            lines_plot(
                 ui,
                 "energy",
                 100.0,
                 Corner::RightTop,
-                &[
-                    ("translational", "kinetic_translational"),
-                    ("rotational", "kinetic_rotational"),
-                    ("potential", "potential"),
-                    ("total", "total"),
-                ],
+                &names,
+                &lines.energy,
                 now,
             )
         });
@@ -283,32 +474,39 @@ impl Plots {
             self.momentum_plot(ui, now)
         });
         section(ui, "What pushed the balls a step (N s)", false, &mut |ui| {
-            self.impulses_plot(ui, now)
+            ui.small("each impulse's length");
+            let names = IMPULSES.map(|(name, _)| name);
+            lines_plot(
+                ui,
+                "impulses",
+                70.0,
+                Corner::LeftTop,
+                &names,
+                &lines.impulses,
+                now,
+            )
         });
         section(ui, "A step's contacts and impacts", false, &mut |ui| {
-            self.columns_plot(
+            let names = COUNTS.map(|(name, _)| name);
+            lines_plot(
                 ui,
                 "counts",
                 70.0,
                 Corner::LeftTop,
-                &[
-                    ("contacts", "contacts"),
-                    ("impacts", "impacts"),
-                    ("on surfaces", "surface_impacts"),
-                ],
+                &names,
+                &lines.counts,
                 now,
             )
         });
         egui::CollapsingHeader::new("One body")
             .default_open(true)
-            .show(ui, |ui| self.body_plots(ui, &cursor));
+            .show(ui, |ui| self.body_plots(ui, now));
         ui.button("export CSV")
             .clicked()
             .then(|| folder.join(format!("rolypoly-series-{}.csv", self.now)))
     }
 
-    /// The balls' momentum, beside it the same told by the impulses, and
-    /// what pushed them a step.
+    /// The balls' momentum, beside it the same told by the impulses.
     fn momentum_plot(&self, ui: &mut egui::Ui, now: f64) {
         ui.small("wide: the balls' own; thin: the first plus every step's impulses since");
         let told = self.momentum_from_impulses();
@@ -318,15 +516,13 @@ impl Plots {
             .show(ui, |plot| {
                 for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
                     let colour = AXIS_COLOURS[axis];
-                    let k = column("momentum_x") + axis;
                     // The thin line first: the legend takes its colour.
-                    if let Some((points, _)) = &told {
-                        let points: Vec<[f64; 2]> =
-                            thinned(points.iter()).map(|(t, p)| [*t, p[axis]]).collect();
+                    if told.is_some() {
+                        let points = self.lines.told[axis].points();
                         plot.line(Line::new(name, points).color(colour).width(1.0));
                     }
                     plot.line(
-                        self.line(name, k)
+                        Line::new(name, self.lines.momentum[axis].points())
                             .color(colour.gamma_multiply(0.45))
                             .width(4.0),
                     );
@@ -341,33 +537,9 @@ impl Plots {
         };
     }
 
-    /// The lengths of what pushed the balls a step.
-    fn impulses_plot(&self, ui: &mut egui::Ui, now: f64) {
-        ui.small("each impulse's length");
-        let length =
-            |s: &Sample, of: ImpulseOf| s.impulses.map_or(f64::NAN, |given| of(&given).length());
-        Plot::new("impulses")
-            .height(70.0)
-            .legend(Legend::default().position(Corner::LeftTop))
-            .show(ui, |plot| {
-                let lines: [(&str, ImpulseOf); 3] = [
-                    ("walls and floor", |g| g.surfaces),
-                    ("tumblers", |g| g.tumblers),
-                    ("gravity", |g| g.gravity),
-                ];
-                for (name, of) in lines {
-                    let points: Vec<[f64; 2]> = thinned(self.samples())
-                        .map(|s| [s.time, length(s, of)])
-                        .collect();
-                    plot.line(Line::new(name, points));
-                }
-                plot.vline(cursor(now));
-            });
-    }
-
     /// The chosen body's height, speed and spin; for a tumbler its tilt
     /// beside the rolling pendulum's curve.
-    fn body_plots(&mut self, ui: &mut egui::Ui, cursor: &dyn Fn() -> VLine) {
+    fn body_plots(&mut self, ui: &mut egui::Ui, now: f64) {
         let tumblers = self.samples().last().map_or(0, |s| s.tilts.len());
         ui.horizontal(|ui| {
             let shown = self.body.map_or("none".to_owned(), Body::name);
@@ -391,23 +563,19 @@ impl Plots {
         let Some(body) = self.body else {
             return;
         };
-        let motion = |pick: fn(&Motion) -> f64| -> Vec<[f64; 2]> {
-            let of_body = self.kept.iter().filter_map(|k| match k.body {
-                Some((b, m)) if b == body => Some((k.sample.time, m)),
-                _ => None,
-            });
-            let all: Vec<(f64, Motion)> = of_body.collect();
-            thinned(all.iter()).map(|(t, m)| [*t, pick(m)]).collect()
-        };
-        Plot::new("body")
-            .height(80.0)
-            .legend(Legend::default().position(Corner::LeftTop))
-            .show(ui, |plot: &mut PlotUi| {
-                plot.line(Line::new("height (m)", motion(|m| m.height)));
-                plot.line(Line::new("speed (m/s)", motion(|m| m.speed)));
-                plot.line(Line::new("spin (rad/s)", motion(|m| m.spin)));
-                plot.vline(cursor());
-            });
+        if self.lines.body != self.body {
+            self.redraw_lines();
+        }
+        let names = MOTION.map(|(name, _)| name);
+        lines_plot(
+            ui,
+            "body",
+            80.0,
+            Corner::LeftTop,
+            &names,
+            &self.lines.motion,
+            now,
+        );
         let Body::Tumbler(k) = body else {
             return;
         };
@@ -422,54 +590,53 @@ impl Plots {
             .height(90.0)
             .legend(Legend::default().position(Corner::LeftTop))
             .show(ui, |plot| {
-                plot.line(self.line("simulated", FIXED_COLUMNS.len() + k));
+                if let Some(line) = self.lines.tilts.get(k) {
+                    plot.line(Line::new("simulated", line.points()));
+                }
                 if let Some(swing) = self.last_swing(k) {
-                    let since: Vec<&Sample> = self
-                        .samples()
-                        .filter(|s| s.time >= swing.at - 0.5)
-                        .collect();
-                    let theory: Vec<[f64; 2]> = thinned(since.iter())
-                        .map(|s| [s.time, self.theory(swing, s.time)])
+                    // From just before the last peak: a swing or so of
+                    // samples, drawn each.
+                    let from = self
+                        .kept
+                        .partition_point(|k| k.sample.time < swing.at - 0.5);
+                    let theory: Vec<[f64; 2]> = self
+                        .kept
+                        .range(from..)
+                        .map(|k| [k.sample.time, self.theory(swing, k.sample.time)])
                         .collect();
                     plot.line(Line::new("theory, from the last swing", theory));
-                }
-                plot.vline(cursor());
-            });
-    }
-
-    /// A plot (`id`) of the series' `columns` (legend name, column), with
-    /// the cursor at `now`.
-    fn columns_plot(
-        &self,
-        ui: &mut egui::Ui,
-        id: &'static str,
-        height: f32,
-        legend: Corner,
-        columns: &[(&'static str, &str)],
-        now: f64,
-    ) {
-        Plot::new(id)
-            .height(height)
-            .legend(Legend::default().position(legend))
-            .show(ui, |plot| {
-                for (name, name_of_column) in columns {
-                    plot.line(self.line(name, column(name_of_column)));
                 }
                 plot.vline(cursor(now));
             });
     }
+}
 
-    /// Column `k` of the samples against their time.
-    fn line(&self, name: &'static str, k: usize) -> Line<'static> {
-        let points: Vec<[f64; 2]> = thinned(self.samples())
-            .map(|s| [s.time, s.value(k)])
-            .collect();
-        Line::new(name, points)
-    }
+/// A plot (`id`) of `lines` named `names`, with the cursor at `now`.
+fn lines_plot(
+    ui: &mut egui::Ui,
+    id: &'static str,
+    height: f32,
+    legend: Corner,
+    names: &[&'static str],
+    lines: &[Envelope],
+    now: f64,
+) {
+    Plot::new(id)
+        .height(height)
+        .legend(Legend::default().position(legend))
+        .show(ui, |plot| {
+            for (name, line) in names.iter().zip(lines) {
+                plot.line(Line::new(*name, line.points()));
+            }
+            plot.vline(cursor(now));
+        });
 }
 
 /// One kind of a step's impulses.
 type ImpulseOf = fn(&BallImpulses) -> DVec3;
+
+/// One part of a body's motion.
+type MotionOf = fn(&Motion) -> f64;
 
 /// The line that marks the moment shown (unnamed: not in the legend).
 fn cursor(now: f64) -> VLine {
@@ -482,20 +649,6 @@ fn column(name: &str) -> usize {
         .iter()
         .position(|c| *c == name)
         .expect("a series column")
-}
-
-/// Every so many of `items`, the last always, so that a line draws at
-/// most [`MOST_POINTS`] or so.
-fn thinned<I>(items: I) -> impl Iterator<Item = I::Item>
-where
-    I: ExactSizeIterator,
-{
-    let n = items.len();
-    let every = n.div_ceil(MOST_POINTS).max(1);
-    items
-        .enumerate()
-        .filter(move |(k, _)| k % every == 0 || k + 1 == n)
-        .map(|(_, item)| item)
 }
 
 #[cfg(test)]
@@ -531,6 +684,53 @@ mod tests {
     }
 
     #[test]
+    fn the_lines_drawn_are_the_samples_and_follow_going_back_and_the_body_chosen() {
+        for seed in [2, 8] {
+            let mut world = World::new(WorldConfig::default(), seed).unwrap();
+            let mut back = World::new(WorldConfig::default(), seed).unwrap();
+            let mut plots = Plots::default();
+            for k in 0..600 {
+                world.step();
+                plots.record(&world, &[]);
+                if k < 300 {
+                    back.step();
+                }
+            }
+            let is_a_sample = |plots: &Plots, [t, v]: [f64; 2], k: usize| {
+                plots.samples().any(|s| s.time == t && s.value(k) == v)
+            };
+            let total = column("total");
+            let points = plots.lines.energy[3].points();
+            assert!(points.len() <= MOST_POINTS + 3, "{}", points.len());
+            assert!(points.iter().all(|p| is_a_sample(&plots, *p, total)));
+            // The highest total energy kept is drawn.
+            let top = plots.samples().map(|s| s.total()).fold(f64::MIN, f64::max);
+            assert!(points.iter().any(|p| p[1] == top));
+            // Back to step 300 and on one step: nothing drawn after it.
+            plots.record(&back, &[]);
+            back.step();
+            plots.record(&back, &[]);
+            let points = plots.lines.energy[3].points();
+            assert_eq!(points.last().unwrap()[0], back.time());
+            assert!(points.iter().all(|p| is_a_sample(&plots, *p, total)));
+            // Another body: its motion only, from the samples taken since.
+            plots.body = Some(Body::Ball(3));
+            for _ in 0..10 {
+                back.step();
+                plots.record(&back, &[]);
+            }
+            let heights = plots.lines.motion[0].points();
+            let floor = back.room().min.y;
+            assert_eq!(
+                heights.last().unwrap()[1],
+                back.balls().positions()[3].y - floor
+            );
+            let finite = heights.iter().filter(|p| p[1].is_finite()).count();
+            assert!((1..=20).contains(&finite), "{finite}");
+        }
+    }
+
+    #[test]
     fn the_momentum_told_by_the_impulses_is_the_balls_own() {
         for seed in [3, 9] {
             let mut world = World::new(WorldConfig::default(), seed).unwrap();
@@ -555,6 +755,47 @@ mod tests {
     }
 
     #[test]
+    fn a_crowded_room_is_sampled_every_few_steps_and_its_impulses_still_add_up() {
+        for (seed, balls) in [(2, 2_500), (5, 4_500)] {
+            let mut config = WorldConfig::default();
+            config.balls.count = balls;
+            config.room.size = glam::DVec3::new(16.0, 6.0, 16.0);
+            let mut world = World::new(config, seed).unwrap();
+            let mut plots = Plots::default();
+            for _ in 0..60 {
+                world.step();
+                plots.record(&world, &[]);
+            }
+            let every = balls.div_ceil(BALLS_SAMPLED_EVERY_STEP) as u64;
+            assert!(every > 1);
+            let steps: Vec<u64> = plots.samples().map(|s| s.step).collect();
+            let expected: Vec<u64> = std::iter::once(1)
+                .chain((every..=60).step_by(every as usize))
+                .collect();
+            assert_eq!(steps, expected, "{balls} balls");
+            // Across the steps not sampled their impulses still tell the
+            // momentum's change.
+            let (told, worst) = plots.momentum_from_impulses().unwrap();
+            let scale: f64 = world.balls().masses().iter().map(|m| m * 5.0).sum();
+            let last = told.last().unwrap().1;
+            let own = world.balls().momentum();
+            assert!((last - own).length() <= 1e-9 * scale, "{last} {own}");
+            assert!(worst <= 1e-12 * scale, "{balls} balls: {worst}");
+            // Without the steps between the balance would not hold.
+            let only_sampled: f64 = plots
+                .samples()
+                .collect::<Vec<_>>()
+                .windows(2)
+                .map(|w| (w[1].momentum - w[0].momentum - w[1].impulses.unwrap().total()).length())
+                .fold(0.0, f64::max);
+            assert!(
+                only_sampled > 1e3 * worst.max(1e-15 * scale),
+                "{only_sampled} {worst}"
+            );
+        }
+    }
+
+    #[test]
     fn the_plotted_body_is_what_the_hand_holds_or_the_chosen_one() {
         let mut world = World::new(WorldConfig::default(), 4).unwrap();
         let mut plots = Plots::default();
@@ -573,17 +814,6 @@ mod tests {
         let floor = world.room().min.y;
         assert_eq!(motion.height, world.balls().positions()[7].y - floor);
         assert_eq!(motion.spin, world.balls().spins()[7].length());
-    }
-
-    #[test]
-    fn a_long_run_draws_at_most_so_many_points_a_line() {
-        let items: Vec<usize> = (0..3601).collect();
-        let kept: Vec<usize> = thinned(items.iter()).copied().collect();
-        assert!(kept.len() <= MOST_POINTS + 1, "{}", kept.len());
-        assert_eq!(kept.first(), Some(&0));
-        assert_eq!(kept.last(), Some(&3600));
-        let few: Vec<usize> = thinned(items[..10].iter()).copied().collect();
-        assert_eq!(few, items[..10]);
     }
 
     #[test]
