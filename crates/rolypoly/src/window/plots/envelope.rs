@@ -67,6 +67,18 @@ impl Envelope {
     /// The points to draw: each slice's lowest and highest in their order,
     /// then the last point added, so that the line ends where it stands.
     pub fn points(&self) -> Vec<[f64; 2]> {
+        let mut points = self.points_before(f64::INFINITY);
+        if let Some(last) = self.last
+            && points.last().is_some_and(|p| p[0] < last[0])
+        {
+            points.push(last);
+        }
+        points
+    }
+
+    /// The slices' lowest and highest points before `time`, in their
+    /// order: where a plot draws every sample from `time` on.
+    pub fn points_before(&self, time: f64) -> Vec<[f64; 2]> {
         let mut points = Vec::with_capacity(2 * self.slices.len() + 1);
         for slice in &self.slices {
             let (first, second) = if slice.low[0] <= slice.high[0] {
@@ -74,15 +86,11 @@ impl Envelope {
             } else {
                 (slice.high, slice.low)
             };
-            points.push(first);
-            if second[0] != first[0] {
-                points.push(second);
+            for point in [first, second] {
+                if point[0] < time && points.last().is_none_or(|p: &[f64; 2]| p[0] < point[0]) {
+                    points.push(point);
+                }
             }
-        }
-        if let Some(last) = self.last
-            && points.last().is_some_and(|p| p[0] < last[0])
-        {
-            points.push(last);
         }
         points
     }
@@ -140,6 +148,9 @@ mod tests {
         let points = line.points();
         assert_eq!(points.first().unwrap()[0], 3.0);
         assert!(points.iter().all(|p| p[1].is_finite()), "{points:?}");
+        let before = line.points_before(5.05);
+        assert_eq!(before.last().unwrap()[0], 5.0);
+        assert!(line.points().len() > before.len());
         let mut gaps = Envelope::new(1.0);
         gaps.push(0.0, f64::NAN);
         assert!(gaps.points()[0][1].is_nan());

@@ -25,13 +25,13 @@ use rolypoly_physics::{BallImpulses, Event, World};
 const KEPT_SECONDS: f64 = 30.0;
 
 /// The most points a line draws, about: 30 s at 120 steps a second are
-/// 3 600 samples, and a plot some 450 pixels wide shows no more than a
-/// point every two pixels (a line's points are what the plots cost a frame
-/// to lay out and tessellate). Each slice of `KEPT_SECONDS` over half this
-/// draws its lowest and highest point.
-const MOST_POINTS: usize = 200;
+/// 3 600 samples, and a plot some 450 pixels wide needs no more than a
+/// point every three pixels (a line's points are what the plots cost a
+/// frame to lay out and tessellate). Each slice of `KEPT_SECONDS` over half
+/// this draws its lowest and highest point.
+const MOST_POINTS: usize = 150;
 
-/// The width of a line's slices (s): see [`MOST_POINTS`].
+/// The width of a line's slices (s): see [`MOST_POINTS`] (0.4 s).
 const SLICE_SECONDS: f64 = KEPT_SECONDS / (MOST_POINTS / 2) as f64;
 
 /// The energy plot's lines: their names, and the series' columns.
@@ -516,16 +516,18 @@ impl Plots {
             .show(ui, |plot| {
                 for (axis, name) in ["x", "y", "z"].into_iter().enumerate() {
                     let colour = AXIS_COLOURS[axis];
-                    // The thin line first: the legend takes its colour.
+                    // The legend names the thin lines, in their own colour;
+                    // an unnamed line is not in it.
+                    let wide = if told.is_some() { "" } else { name };
+                    plot.line(
+                        Line::new(wide, self.lines.momentum[axis].points())
+                            .color(colour.gamma_multiply(0.45))
+                            .width(4.0),
+                    );
                     if told.is_some() {
                         let points = self.lines.told[axis].points();
                         plot.line(Line::new(name, points).color(colour).width(1.0));
                     }
-                    plot.line(
-                        Line::new(name, self.lines.momentum[axis].points())
-                            .color(colour.gamma_multiply(0.45))
-                            .width(4.0),
-                    );
                 }
                 plot.vline(cursor(now));
             });
@@ -590,19 +592,23 @@ impl Plots {
             .height(90.0)
             .legend(Legend::default().position(Corner::LeftTop))
             .show(ui, |plot| {
-                if let Some(line) = self.lines.tilts.get(k) {
-                    plot.line(Line::new("simulated", line.points()));
+                // From just before the last peak on, a swing or so, every
+                // sample is drawn, the simulation's beside the theory's.
+                let swing = self.last_swing(k);
+                let since = swing.map_or(f64::INFINITY, |swing| swing.at - 0.5);
+                let from = self.kept.partition_point(|kept| kept.sample.time < since);
+                let recent = self.kept.range(from..);
+                if let Some(tilts) = self.lines.tilts.get(k) {
+                    let mut simulated = tilts.points_before(since);
+                    simulated.extend(recent.clone().map(|kept| {
+                        let tilt = kept.sample.tilts.get(k).copied();
+                        [kept.sample.time, tilt.unwrap_or(f64::NAN)]
+                    }));
+                    plot.line(Line::new("simulated", simulated));
                 }
-                if let Some(swing) = self.last_swing(k) {
-                    // From just before the last peak: a swing or so of
-                    // samples, drawn each.
-                    let from = self
-                        .kept
-                        .partition_point(|k| k.sample.time < swing.at - 0.5);
-                    let theory: Vec<[f64; 2]> = self
-                        .kept
-                        .range(from..)
-                        .map(|k| [k.sample.time, self.theory(swing, k.sample.time)])
+                if let Some(swing) = swing {
+                    let theory: Vec<[f64; 2]> = recent
+                        .map(|kept| [kept.sample.time, self.theory(swing, kept.sample.time)])
                         .collect();
                     plot.line(Line::new("theory, from the last swing", theory));
                 }
@@ -625,8 +631,8 @@ fn lines_plot(
         .height(height)
         .legend(Legend::default().position(legend))
         .show(ui, |plot| {
-            for (name, line) in names.iter().zip(lines) {
-                plot.line(Line::new(*name, line.points()));
+            for (name, envelope) in names.iter().zip(lines) {
+                plot.line(Line::new(*name, envelope.points()));
             }
             plot.vline(cursor(now));
         });
