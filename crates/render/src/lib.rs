@@ -23,6 +23,7 @@ mod quality;
 mod renderer;
 mod room;
 mod scale;
+pub mod shaders;
 mod shadow;
 mod snapshot;
 mod temporal;

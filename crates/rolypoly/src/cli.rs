@@ -330,6 +330,17 @@ pub enum Command {
     /// and heard from the camera, to a WAV file (16-bit stereo, 48 kHz),
     /// without drawing and without an audio device.
     Sound(SoundArgs),
+    /// Write the renderer's WGSL shaders as shipped into a folder, with a
+    /// README naming what each draws, to read them or edit them. A file
+    /// already there that differs (an edit) is refused, never overwritten.
+    Shaders(ShadersArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ShadersArgs {
+    /// The folder to write them into (made if need be, in a folder that is).
+    #[arg(long, value_name = "DIR")]
+    pub export: PathBuf,
 }
 
 #[derive(Debug, Args)]

@@ -400,6 +400,56 @@ fn make_tumbler_obj_writes_the_shipped_mesh_for_the_default_scene() {
 }
 
 #[test]
+fn shaders_export_writes_the_shipped_files_and_never_loses_an_edit() {
+    let dir = scratch("exported-shaders");
+    let _ = std::fs::remove_dir_all(&dir);
+    let dir_str = dir.to_str().expect("UTF-8 path");
+    let output = rolypoly(&["shaders", "--export", dir_str]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert!(
+        stdout(&output).contains("scene.wgsl"),
+        "{}",
+        stdout(&output)
+    );
+    let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("../render/shaders");
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(&shipped).expect("the renderer's shaders") {
+        let name = entry.expect("an entry").file_name();
+        let written = std::fs::read(dir.join(&name)).expect("exported");
+        assert_eq!(
+            written,
+            std::fs::read(shipped.join(&name)).unwrap(),
+            "{name:?}"
+        );
+        names.push(name.to_string_lossy().into_owned());
+    }
+    assert!(names.len() >= 9, "{names:?}");
+    let readme = std::fs::read_to_string(dir.join("README.md")).expect("a README");
+    assert!(
+        names.iter().all(|n| readme.contains(n.as_str())),
+        "{readme}"
+    );
+    // An edited file is refused by name and kept.
+    std::fs::write(dir.join("tonemap.wgsl"), "// mine\n").unwrap();
+    let err = assert_clean_failure(&rolypoly(&["shaders", "--export", dir_str]));
+    assert!(err.contains("tonemap.wgsl"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(dir.join("tonemap.wgsl")).unwrap(),
+        "// mine\n"
+    );
+    // Into a folder whose folder is not there.
+    let err = assert_clean_failure(&rolypoly(&[
+        "shaders",
+        "--export",
+        "/no/such/folder/shaders",
+    ]));
+    assert!(
+        err.contains("/no/such/folder") && err.contains("does not exist"),
+        "{err}"
+    );
+}
+
+#[test]
 fn a_scene_can_start_with_the_fireball_flying() {
     let path = scene_file("fireball-on.toml", "[fireball]\nstarts_active = true\n");
     let path = path.to_str().expect("UTF-8 path");

@@ -377,6 +377,7 @@ fn every_page_runs_the_program_one_way() {
         "replay",
         "sound",
         "make-tumbler-obj",
+        "shaders",
         "--",
     ];
     for page in pages() {

@@ -28,11 +28,7 @@ pub(super) struct BloomPipelines {
 
 impl BloomPipelines {
     pub fn new(device: &wgpu::Device) -> BloomPipelines {
-        let shader = screen_shader(
-            device,
-            "bloom.wgsl",
-            include_str!("../../shaders/bloom.wgsl"),
-        );
+        let shader = screen_shader(device, &crate::shaders::BLOOM);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("bloom"),
             entries: &[

@@ -18,8 +18,8 @@ impl Cursor {
     /// A cursor, hidden, for frames in `output_format`.
     pub fn new(device: &wgpu::Device, output_format: wgpu::TextureFormat) -> Cursor {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("cursor.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/cursor.wgsl").into()),
+            label: Some(crate::shaders::CURSOR.name),
+            source: wgpu::ShaderSource::Wgsl(crate::shaders::CURSOR.source.into()),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("cursor"),

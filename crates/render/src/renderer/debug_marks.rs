@@ -31,8 +31,8 @@ impl DebugMarksPass {
     /// The pass, for frames in `output_format`.
     pub fn new(device: &wgpu::Device, output_format: wgpu::TextureFormat) -> DebugMarksPass {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("debug_marks.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/debug_marks.wgsl").into()),
+            label: Some(crate::shaders::DEBUG_MARKS.name),
+            source: wgpu::ShaderSource::Wgsl(crate::shaders::DEBUG_MARKS.source.into()),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("debug marks"),

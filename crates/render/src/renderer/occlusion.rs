@@ -37,11 +37,7 @@ pub(super) struct OcclusionPipeline {
 
 impl OcclusionPipeline {
     pub fn new(device: &wgpu::Device) -> OcclusionPipeline {
-        let shader = screen_shader(
-            device,
-            "occlusion.wgsl",
-            include_str!("../../shaders/occlusion.wgsl"),
-        );
+        let shader = screen_shader(device, &crate::shaders::OCCLUSION);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("occlusion"),
             entries: &[

@@ -6,6 +6,7 @@ use super::taa::MOTION_FORMAT;
 use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT, RenderSettings};
 use crate::instances::{BALL_MATERIAL, BallInstance, Instance, PreviousModel};
 use crate::mesh::Vertex;
+use crate::shaders::{self, ShaderFile};
 use crate::shadow;
 
 /// Every pipeline of a frame but the cursor's.
@@ -40,14 +41,10 @@ impl Pipelines {
     ) -> Pipelines {
         let msaa = settings.msaa;
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("scene.wgsl"),
+            label: Some(shaders::SCENE.name),
             source: wgpu::ShaderSource::Wgsl(scene_shader(settings.early_ball_depth).into()),
         });
-        let tonemap_shader = screen_shader(
-            device,
-            "tonemap.wgsl",
-            include_str!("../../shaders/tonemap.wgsl"),
-        );
+        let tonemap_shader = screen_shader(device, &shaders::TONEMAP);
 
         let scene_pipeline_layout =
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -238,11 +235,7 @@ impl Pipelines {
             output_format.into(),
         );
 
-        let upscale_shader = screen_shader(
-            device,
-            "upscale.wgsl",
-            include_str!("../../shaders/upscale.wgsl"),
-        );
+        let upscale_shader = screen_shader(device, &shaders::UPSCALE);
         let upscale_pipeline = screen_pipeline(
             device,
             "upscale",
@@ -298,16 +291,12 @@ fn scene_targets(
     targets
 }
 
-/// The shader of a pass over whole images: `source` after the shared
+/// The shader of a pass over whole images: `file` after the shared
 /// vertex shader that covers the target (screen.wgsl's `vs_screen`).
-pub(super) fn screen_shader(
-    device: &wgpu::Device,
-    label: &str,
-    source: &str,
-) -> wgpu::ShaderModule {
-    let screen = include_str!("../../shaders/screen.wgsl");
+pub(super) fn screen_shader(device: &wgpu::Device, file: &ShaderFile) -> wgpu::ShaderModule {
+    let (screen, source) = (shaders::SCREEN.source, file.source);
     device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
+        label: Some(file.name),
         source: wgpu::ShaderSource::Wgsl(format!("{screen}\n{source}").into()),
     })
 }
@@ -382,7 +371,7 @@ const EARLY_DEPTH_TEST: &str = "@early_depth_test(greater_equal)";
 /// is a native feature that not every adapter has, so it is added only
 /// where asked for.
 fn scene_shader(early_ball_depth: bool) -> String {
-    let source = include_str!("../../shaders/scene.wgsl");
+    let source = shaders::SCENE.source;
     if !early_ball_depth {
         return source.to_string();
     }

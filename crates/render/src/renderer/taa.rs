@@ -121,7 +121,7 @@ impl TaaPipelines {
                 texture_entry(6, false),
             ],
         });
-        let shader = screen_shader(device, "taa.wgsl", include_str!("../../shaders/taa.wgsl"));
+        let shader = screen_shader(device, &crate::shaders::TAA);
         let target = Some(wgpu::ColorTargetState::from(NEIGHBOURHOOD_FORMAT));
         let around = screen_pipeline_into(
             device,

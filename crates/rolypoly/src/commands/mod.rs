@@ -1,6 +1,7 @@
 //! The program's commands, a file each: the window (no subcommand),
-//! `simulate`, `render`, `record`, `replay`, `sound` and `make-tumbler-obj`; and the
-//! checks every command's outputs pass before any work.
+//! `simulate`, `render`, `record`, `replay`, `sound`, `make-tumbler-obj`
+//! and `shaders`; and the checks every command's outputs pass before any
+//! work.
 
 use std::path::Path;
 
@@ -18,6 +19,7 @@ mod record;
 mod render;
 mod replay;
 mod run;
+mod shaders;
 mod simulate;
 mod sound;
 
@@ -25,9 +27,12 @@ mod sound;
 pub fn run(cli: &Cli) -> anyhow::Result<()> {
     check_outputs(cli)?;
     rolypoly_gpu::set_program_gpu_timeout(cli.gpu.gpu_timeout);
-    if let Some(Command::Replay(args)) = &cli.command {
+    match &cli.command {
         // A recording carries its own scene and seed.
-        return replay::replay(args, &cli.window, cli.scene.engine);
+        Some(Command::Replay(args)) => return replay::replay(args, &cli.window, cli.scene.engine),
+        // The shaders are the program's, whatever the scene.
+        Some(Command::Shaders(args)) => return shaders::export(args),
+        _ => {}
     }
     let scene_args = &cli.scene;
     let path = scene_args.scene.as_deref();
@@ -73,6 +78,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
             args,
         ),
         Some(Command::Replay(args)) => replay::replay(args, &cli.window, cli.scene.engine),
+        Some(Command::Shaders(args)) => shaders::export(args),
         Some(Command::MakeTumblerObj(args)) => {
             make_tumbler_obj::make_tumbler_obj(world.config(), args)
         }
@@ -134,6 +140,8 @@ fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
             file_in_folder(&args.out)?;
             named_for(&args.out, "obj", "the mesh is a Wavefront OBJ file")
         }
+        // The export checks its folder itself, before writing anything.
+        Some(Command::Shaders(_)) => Ok(()),
         Some(Command::Simulate(args)) => match &args.trace {
             Some(trace) if !trace::is_stdout(trace) => file_in_folder(trace),
             _ => Ok(()),

@@ -1,0 +1,238 @@
+//! The renderer's WGSL shaders, in one place: each file's name, its source
+//! (built into the program) and what it draws. The passes take their
+//! sources from here, and `rolypoly shaders --export DIR` writes them out,
+//! with a README naming what each draws, for reading and editing.
+
+use std::io;
+use std::path::{Path, PathBuf};
+
+/// One shipped shader file.
+#[derive(Clone, Copy, Debug)]
+pub struct ShaderFile {
+    /// Its file name, as exported (`scene.wgsl`).
+    pub name: &'static str,
+    /// Its source.
+    pub source: &'static str,
+    /// What it draws, a line.
+    pub draws: &'static str,
+}
+
+/// The lit scene: Blinn-Phong from the point lights, the shadow cube's
+/// lookups, the balls traced on squares, the bulb, the shadow faces.
+pub const SCENE: ShaderFile = ShaderFile {
+    name: "scene.wgsl",
+    source: include_str!("../shaders/scene.wgsl"),
+    draws: "the lit scene (room, tumblers, balls traced on squares, the bulb): Blinn-Phong's ambient, diffuse and specular terms from the point lights, the shadow cube's filtered lookups, the bounce light; and the six depth faces of the shadow cube",
+};
+
+/// The vertex shader put in front of every pass over whole images.
+pub const SCREEN: ShaderFile = ShaderFile {
+    name: "screen.wgsl",
+    source: include_str!("../shaders/screen.wgsl"),
+    draws: "one triangle over the whole target: the vertex shader put in front of occlusion.wgsl, bloom.wgsl, tonemap.wgsl, upscale.wgsl and taa.wgsl",
+};
+
+/// Contact occlusion.
+pub const OCCLUSION: ShaderFile = ShaderFile {
+    name: "occlusion.wgsl",
+    source: include_str!("../shaders/occlusion.wgsl"),
+    draws: "the contact darkening: how much of the sky above each visible point what lies close around it hides (screen-space ambient occlusion), and its blur",
+};
+
+/// The bloom chain.
+pub const BLOOM: ShaderFile = ShaderFile {
+    name: "bloom.wgsl",
+    source: include_str!("../shaders/bloom.wgsl"),
+    draws: "the bloom: the bright pass, then the chain of half-size images filtered down and back up",
+};
+
+/// Tone mapping.
+pub const TONEMAP: ShaderFile = ShaderFile {
+    name: "tonemap.wgsl",
+    source: include_str!("../shaders/tonemap.wgsl"),
+    draws: "from the HDR frame to the screen: the occlusion's darkening, the bloom's glow, exposure and the filmic curve",
+};
+
+/// The upscale to the output's size.
+pub const UPSCALE: ShaderFile = ShaderFile {
+    name: "upscale.wgsl",
+    source: include_str!("../shaders/upscale.wgsl"),
+    draws: "the frame lit at a lower resolution spread over the output's pixels (bilinear)",
+};
+
+/// Temporal anti-aliasing with upsampling.
+pub const TAA: ShaderFile = ShaderFile {
+    name: "taa.wgsl",
+    source: include_str!("../shaders/taa.wgsl"),
+    draws: "the temporal path: each texel's neighbourhood, the history resolved with this frame, and the sharpened output",
+};
+
+/// The debug views' marks.
+pub const DEBUG_MARKS: ShaderFile = ShaderFile {
+    name: "debug_marks.wgsl",
+    source: include_str!("../shaders/debug_marks.wgsl"),
+    draws: "the debug views' marks over the finished frame: lines, dots, arrows and spikes, faint where a body hides them",
+};
+
+/// Grab mode's cursor.
+pub const CURSOR: ShaderFile = ShaderFile {
+    name: "cursor.wgsl",
+    source: include_str!("../shaders/cursor.wgsl"),
+    draws: "grab mode's arrow cursor over the finished frame",
+};
+
+/// Every shipped shader, in the order a frame uses them.
+pub const SHIPPED: [ShaderFile; 9] = [
+    SCENE,
+    SCREEN,
+    OCCLUSION,
+    BLOOM,
+    TONEMAP,
+    UPSCALE,
+    TAA,
+    DEBUG_MARKS,
+    CURSOR,
+];
+
+/// The README written beside the exported files.
+pub const EXPORT_README: &str = "README.md";
+
+/// Why the shaders could not be exported: names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// The folder could not be made, or a file written.
+    #[error("cannot write `{path}`")]
+    Write {
+        /// The folder or file.
+        path: PathBuf,
+        /// Why.
+        source: io::Error,
+    },
+    /// The folder's own folder is not there.
+    #[error("cannot make `{dir}`: the folder `{parent}` does not exist")]
+    NoParent {
+        /// The folder asked for.
+        dir: PathBuf,
+        /// Its parent.
+        parent: PathBuf,
+    },
+    /// A file of that name is there and is not the shipped one: an edit
+    /// that the export would lose.
+    #[error(
+        "`{path}` is there and differs from the shipped one (an edit?): export into another folder, or move it away first"
+    )]
+    WouldOverwrite {
+        /// The file.
+        path: PathBuf,
+    },
+}
+
+/// The README of an export: what each file draws.
+pub fn export_readme() -> String {
+    let mut text = String::from(
+        "# The renderer's shaders\n\nThe WGSL files the renderer draws every frame with, as shipped. Each:\n\n",
+    );
+    for file in SHIPPED {
+        text.push_str(&format!("- `{}`: {}.\n", file.name, file.draws));
+    }
+    text.push_str(
+        "\nThe GPU physics engine's compute shaders are not among them: they step the balls, not the picture.\n",
+    );
+    text
+}
+
+/// Writes every shipped shader and the README into `dir`, made if need be
+/// (its parent must be there). A file already there is left as it is if
+/// it is the shipped one, and refused if it differs, before anything is
+/// written: nothing edited is lost. Returns the files written.
+pub fn export(dir: &Path) -> Result<Vec<PathBuf>, ExportError> {
+    let readme = export_readme();
+    let files: Vec<(PathBuf, &str)> = SHIPPED
+        .iter()
+        .map(|f| (dir.join(f.name), f.source))
+        .chain([(dir.join(EXPORT_README), readme.as_str())])
+        .collect();
+    for (path, text) in &files {
+        match std::fs::read(path) {
+            Ok(there) if there != text.as_bytes() => {
+                return Err(ExportError::WouldOverwrite { path: path.clone() });
+            }
+            _ => {}
+        }
+    }
+    if !dir.is_dir() {
+        let parent = dir.parent().filter(|p| !p.as_os_str().is_empty());
+        if let Some(parent) = parent.filter(|p| !p.is_dir()) {
+            return Err(ExportError::NoParent {
+                dir: dir.to_path_buf(),
+                parent: parent.to_path_buf(),
+            });
+        }
+        std::fs::create_dir(dir).map_err(|source| ExportError::Write {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+    }
+    for (path, text) in &files {
+        std::fs::write(path, text).map_err(|source| ExportError::Write {
+            path: path.clone(),
+            source,
+        })?;
+    }
+    Ok(files.into_iter().map(|(path, _)| path).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_wgsl_file_of_the_renderer_is_shipped_once_and_named_by_its_file() {
+        let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
+        let mut on_disk: Vec<String> = std::fs::read_dir(&folder)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|name| name.ends_with(".wgsl"))
+            .collect();
+        on_disk.sort();
+        let mut shipped: Vec<String> = SHIPPED.iter().map(|f| f.name.to_owned()).collect();
+        shipped.sort();
+        assert_eq!(shipped, on_disk);
+        for file in SHIPPED {
+            let source = std::fs::read_to_string(folder.join(file.name)).unwrap();
+            assert_eq!(file.source, source, "{}", file.name);
+            assert!(export_readme().contains(&format!("`{}`", file.name)));
+        }
+    }
+
+    #[test]
+    fn an_export_writes_every_file_again_unchanged_and_refuses_to_lose_an_edit() {
+        let dir = std::env::temp_dir().join(format!("rolypoly-shaders-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let written = export(&dir).unwrap();
+        assert_eq!(written.len(), SHIPPED.len() + 1);
+        for file in SHIPPED {
+            assert_eq!(
+                std::fs::read_to_string(dir.join(file.name)).unwrap(),
+                file.source
+            );
+        }
+        // Again into the same folder: the same files, nothing refused.
+        export(&dir).unwrap();
+        // An edited file is kept, and named.
+        let edited = dir.join(SCENE.name);
+        std::fs::write(&edited, "// my own\n").unwrap();
+        let error = export(&dir).unwrap_err();
+        assert!(error.to_string().contains("scene.wgsl"), "{error}");
+        assert_eq!(std::fs::read_to_string(&edited).unwrap(), "// my own\n");
+        std::fs::remove_dir_all(&dir).unwrap();
+        // A folder in a folder that is not there: one error naming it.
+        let lost = dir.join("no").join("such");
+        let error = export(&lost).unwrap_err().to_string();
+        assert!(
+            error.contains("does not exist") && error.contains("no"),
+            "{error}"
+        );
+        assert!(!dir.exists());
+    }
+}
