@@ -12,6 +12,7 @@ use rolypoly_render::{
 };
 
 use rolypoly_render::Gpu;
+use rolypoly_render::shaders::ShaderSet;
 
 use crate::simulation::Simulation;
 
@@ -33,6 +34,9 @@ pub struct FrameOptions {
     pub shadow_taps: Option<u32>,
     /// An OBJ file to draw the tumblers with.
     pub tumbler_obj: Option<PathBuf>,
+    /// A folder of the renderer's shaders to draw with instead of the
+    /// shipped ones (`shaders --export` writes one).
+    pub shaders: Option<PathBuf>,
     /// The debug views drawn over every frame.
     pub show: Option<DebugViews>,
     /// Share of the width and height the scene is lit at (default: the
@@ -100,7 +104,19 @@ impl Frames {
             temporal: args.temporal,
             ..drawn
         };
-        let snapshot = Snapshot::new(config, settings, width, height, mesh)?;
+        // A folder's shaders are checked before the GPU is opened.
+        let shaders = match &args.shaders {
+            Some(dir) => ShaderSet::load(dir)?,
+            None => ShaderSet::shipped(),
+        };
+        let snapshot = Snapshot::drawn_with(
+            Gpu::headless()?,
+            config,
+            settings,
+            (width, height),
+            mesh,
+            &shaders,
+        )?;
         let camera = chosen_camera(args.camera, config);
         Ok(Frames {
             snapshot,

@@ -1,7 +1,9 @@
 //! The renderer's WGSL shaders, in one place: each file's name, its source
 //! (built into the program) and what it draws. The passes take their
-//! sources from here, and `rolypoly shaders --export DIR` writes them out,
-//! with a README naming what each draws, for reading and editing.
+//! sources from a [`ShaderSet`]: the shipped ones, or a folder's, checked
+//! by naga (wgpu's own front end and validator) before any pipeline is
+//! made of them. `rolypoly shaders --export DIR` writes them out, with a
+//! README naming what each draws, for reading and editing.
 
 use std::io;
 use std::path::{Path, PathBuf};
@@ -182,6 +184,149 @@ pub fn export(dir: &Path) -> Result<Vec<PathBuf>, ExportError> {
     Ok(files.into_iter().map(|(path, _)| path).collect())
 }
 
+/// The shaders a renderer draws with: the shipped ones, or those of a
+/// folder (`--shaders DIR`), one source for each of [`SHIPPED`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShaderSet {
+    sources: Vec<String>,
+}
+
+/// Why a folder's shaders cannot be drawn with: names the folder or file.
+#[derive(Debug, thiserror::Error)]
+pub enum ShaderError {
+    /// The folder is not there.
+    #[error(
+        "--shaders `{dir}`: no such folder (`shaders --export DIR` writes the shipped ones into one)"
+    )]
+    NoFolder {
+        /// The folder.
+        dir: PathBuf,
+    },
+    /// A file is missing or cannot be read.
+    #[error(
+        "cannot read the shader `{path}` (the folder needs every file `shaders --export` writes)"
+    )]
+    Unreadable {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: io::Error,
+    },
+    /// A file is not WGSL that wgpu would take.
+    #[error("{path}:{line}:{column}: {message}")]
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// Its line, from 1.
+        line: u32,
+        /// Its column, from 1.
+        column: u32,
+        /// naga's message.
+        message: String,
+    },
+}
+
+impl ShaderSet {
+    /// The shaders built into the program.
+    pub fn shipped() -> ShaderSet {
+        ShaderSet {
+            sources: SHIPPED.iter().map(|f| f.source.to_owned()).collect(),
+        }
+    }
+
+    /// The shaders of `dir`, a file for each of [`SHIPPED`], each parsed
+    /// and validated as wgpu does: the first that fails is named, with its
+    /// line and column.
+    pub fn load(dir: &Path) -> Result<ShaderSet, ShaderError> {
+        if !dir.is_dir() {
+            return Err(ShaderError::NoFolder {
+                dir: dir.to_path_buf(),
+            });
+        }
+        let mut sources = Vec::with_capacity(SHIPPED.len());
+        for file in SHIPPED {
+            let path = dir.join(file.name);
+            let source = std::fs::read_to_string(&path)
+                .map_err(|source| ShaderError::Unreadable { path, source })?;
+            sources.push(source);
+        }
+        let set = ShaderSet { sources };
+        let screen = set.source(&SCREEN);
+        for file in SHIPPED {
+            // A pass over whole images is compiled after screen.wgsl.
+            let prelude = if SCREEN_PASSES.iter().any(|p| p.name == file.name) {
+                screen
+            } else {
+                ""
+            };
+            check(&dir.join(file.name), set.source(&file), prelude)?;
+        }
+        Ok(set)
+    }
+
+    /// The source of `file`.
+    pub fn source(&self, file: &ShaderFile) -> &str {
+        let k = SHIPPED
+            .iter()
+            .position(|f| f.name == file.name)
+            .expect("a shipped shader");
+        &self.sources[k]
+    }
+
+    /// The source of a pass over whole images: screen.wgsl, then `file`.
+    pub fn screen_pass(&self, file: &ShaderFile) -> String {
+        screen_pass(self.source(&SCREEN), self.source(file))
+    }
+}
+
+/// The passes over whole images, compiled after screen.wgsl.
+const SCREEN_PASSES: [ShaderFile; 5] = [OCCLUSION, BLOOM, TONEMAP, UPSCALE, TAA];
+
+/// `source` after the shared vertex shader `screen`.
+fn screen_pass(screen: &str, source: &str) -> String {
+    format!("{screen}\n{source}")
+}
+
+/// Parses and validates `source` (of the file at `path`) as wgpu does,
+/// after `prelude` where it is compiled after one; a place in the prelude
+/// is named as screen.wgsl's.
+fn check(path: &Path, source: &str, prelude: &str) -> Result<(), ShaderError> {
+    let whole = if prelude.is_empty() {
+        source.to_owned()
+    } else {
+        screen_pass(prelude, source)
+    };
+    // The lines before the file's own in what is compiled.
+    let before = if prelude.is_empty() {
+        0
+    } else {
+        prelude.matches('\n').count() as u32 + 1
+    };
+    let invalid = |location: Option<naga::SourceLocation>, message: String| {
+        let (line, column) = location.map_or((1, 1), |l| (l.line_number, l.line_position));
+        let (path, line) = if line > before {
+            (path.to_path_buf(), line - before)
+        } else {
+            (path.with_file_name(SCREEN.name), line)
+        };
+        ShaderError::Invalid {
+            path,
+            line,
+            column,
+            message,
+        }
+    };
+    let module = naga::front::wgsl::parse_str(&whole)
+        .map_err(|e| invalid(e.location(&whole), e.message().to_owned()))?;
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::all(),
+    )
+    .validate(&module)
+    .map_err(|e| invalid(e.location(&whole), e.as_inner().to_string()))?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -203,6 +348,45 @@ mod tests {
             assert_eq!(file.source, source, "{}", file.name);
             assert!(export_readme().contains(&format!("`{}`", file.name)));
         }
+    }
+
+    #[test]
+    fn a_folder_of_the_exported_shaders_is_the_shipped_set_and_a_broken_file_is_named_by_line() {
+        let dir = std::env::temp_dir().join(format!("rolypoly-load-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        export(&dir).unwrap();
+        assert_eq!(ShaderSet::load(&dir).unwrap(), ShaderSet::shipped());
+        // A mistake on the fourth line of a pass after screen.wgsl: its own
+        // line, not the compiled whole's.
+        let mut lines: Vec<&str> = TONEMAP.source.lines().collect();
+        lines.insert(3, "let = oops;");
+        std::fs::write(dir.join(TONEMAP.name), lines.join("\n")).unwrap();
+        let error = ShaderSet::load(&dir).unwrap_err();
+        let ShaderError::Invalid {
+            path, line, column, ..
+        } = &error
+        else {
+            panic!("{error}");
+        };
+        assert_eq!(path, &dir.join("tonemap.wgsl"));
+        assert_eq!((*line, *column), (4, 1), "{error}");
+        // A type error, found by validation rather than parsing.
+        std::fs::write(dir.join(TONEMAP.name), TONEMAP.source).unwrap();
+        let scene = SCENE.source.replacen(
+            "fn ",
+            "fn broken() -> f32 { return vec3<f32>(1.0); }\nfn ",
+            1,
+        );
+        std::fs::write(dir.join(SCENE.name), &scene).unwrap();
+        let error = ShaderSet::load(&dir).unwrap_err().to_string();
+        assert!(error.contains("scene.wgsl:"), "{error}");
+        // A file missing, and no folder at all.
+        std::fs::remove_file(dir.join(CURSOR.name)).unwrap();
+        let error = ShaderSet::load(&dir).unwrap_err().to_string();
+        assert!(error.contains("cursor.wgsl"), "{error}");
+        std::fs::remove_dir_all(&dir).unwrap();
+        let error = ShaderSet::load(&dir).unwrap_err().to_string();
+        assert!(error.contains("no such folder"), "{error}");
     }
 
     #[test]

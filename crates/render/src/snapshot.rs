@@ -6,6 +6,7 @@ use crate::gpu::{Gpu, RenderError};
 use crate::mesh::MeshData;
 use crate::offscreen::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::renderer::{FrameStats, RenderSettings, Renderer};
+use crate::shaders::ShaderSet;
 use crate::view::SceneView;
 use image::RgbaImage;
 use rolypoly_physics::WorldConfig;
@@ -50,6 +51,26 @@ impl Snapshot {
         height: u32,
         tumbler_mesh: Option<MeshData>,
     ) -> Result<Snapshot, RenderError> {
+        let shipped = ShaderSet::shipped();
+        Snapshot::drawn_with(
+            gpu,
+            config,
+            settings,
+            (width, height),
+            tumbler_mesh,
+            &shipped,
+        )
+    }
+
+    /// As [`Snapshot::on`], drawing with `shaders`.
+    pub fn drawn_with(
+        gpu: Gpu,
+        config: &WorldConfig,
+        settings: RenderSettings,
+        (width, height): (u32, u32),
+        tumbler_mesh: Option<MeshData>,
+        shaders: &ShaderSet,
+    ) -> Result<Snapshot, RenderError> {
         let spheres = &config.tumblers.spheres;
         // A mesh of the user's own has no coarse level to draw.
         let made_from_spheres = tumbler_mesh.is_none();
@@ -60,7 +81,8 @@ impl Snapshot {
             }
         };
         let paint = crate::paint::tumbler_paint(spheres);
-        let mut renderer = Renderer::new(&gpu, settings, OFFSCREEN_FORMAT, &mesh, &paint);
+        let mut renderer =
+            Renderer::with_shaders(&gpu, settings, OFFSCREEN_FORMAT, &mesh, &paint, shaders);
         if made_from_spheres {
             renderer.set_coarse_tumbler(&gpu, &crate::tumbler_mesh::coarse_tumbler_mesh(spheres));
         }

@@ -219,6 +219,7 @@ impl FrameArgs {
             shadow_size: self.shadow_size,
             shadow_taps: self.shadow_taps,
             tumbler_obj: self.tumbler_obj.clone(),
+            shaders: self.shaders.clone(),
             show: self.show,
             scale: self.scale,
             temporal: self.temporal,
@@ -540,6 +541,12 @@ pub struct FrameArgs {
     /// Use this OBJ file as the tumbler's mesh instead of the built-in one.
     #[arg(long, value_name = "FILE")]
     pub tumbler_obj: Option<PathBuf>,
+
+    /// Draw with the renderer's shaders from this folder instead of the
+    /// shipped ones (`shaders --export DIR` writes them there to edit);
+    /// each is checked first, an error naming its file, line and column.
+    #[arg(long, value_name = "DIR")]
+    pub shaders: Option<PathBuf>,
 
     /// Launch the fireball from the scene's spawn point at time 0.
     #[arg(long)]

@@ -450,6 +450,69 @@ fn shaders_export_writes_the_shipped_files_and_never_loses_an_edit() {
 }
 
 #[test]
+fn render_draws_with_a_folders_shaders_and_names_a_broken_ones_line() {
+    let dir = scratch("render-shaders");
+    let _ = std::fs::remove_dir_all(&dir);
+    let dir_str = dir.to_str().expect("UTF-8 path");
+    assert!(rolypoly(&["shaders", "--export", dir_str]).status.success());
+    let frame = |name: &str, with: Option<&str>| {
+        let out = scratch(name);
+        let _ = std::fs::remove_file(&out);
+        let out_str = out.to_str().expect("UTF-8 path").to_owned();
+        let mut args = vec![
+            "render", "--time", "0.3", "--size", "64x36", "--out", &out_str,
+        ];
+        if let Some(dir) = with {
+            args.extend(["--shaders", dir]);
+        }
+        let output = rolypoly(&args);
+        (output, out)
+    };
+    // The exported files draw the shipped picture, byte for byte.
+    let (output, shipped) = frame("shipped-shaders.png", None);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let (output, exported) = frame("exported-shaders.png", Some(dir_str));
+    assert!(output.status.success(), "{}", stderr(&output));
+    assert_eq!(
+        std::fs::read(&shipped).unwrap(),
+        std::fs::read(&exported).unwrap()
+    );
+    // Tone mapping edited to give one colour: the picture is that colour.
+    let tonemap = dir.join("tonemap.wgsl");
+    let source = std::fs::read_to_string(&tonemap).unwrap();
+    let entry = "fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {";
+    assert!(source.contains(entry));
+    let magenta = source.replace(
+        entry,
+        &format!("{entry}\n    return vec4<f32>(1.0, 0.0, 1.0, 1.0);"),
+    );
+    std::fs::write(&tonemap, magenta).unwrap();
+    let (output, edited) = frame("edited-shaders.png", Some(dir_str));
+    assert!(output.status.success(), "{}", stderr(&output));
+    let img = image::open(&edited).expect("a PNG").to_rgba8();
+    assert!(
+        img.pixels().all(|p| p.0 == [255, 0, 255, 255]),
+        "{:?}",
+        img.get_pixel(0, 0)
+    );
+    // A syntax error on line 3: one error naming the file, line and column,
+    // and no picture.
+    let mut lines: Vec<&str> = source.lines().collect();
+    lines.insert(2, "fn (");
+    std::fs::write(&tonemap, lines.join("\n")).unwrap();
+    let (output, broken) = frame("broken-shaders.png", Some(dir_str));
+    let err = assert_clean_failure(&output);
+    assert!(err.contains("tonemap.wgsl:3:"), "{err}");
+    assert!(!broken.exists());
+    // A file missing, and a folder that is not there.
+    std::fs::remove_file(&tonemap).unwrap();
+    let err = assert_clean_failure(&frame("missing-shader.png", Some(dir_str)).0);
+    assert!(err.contains("tonemap.wgsl"), "{err}");
+    let err = assert_clean_failure(&frame("no-shaders.png", Some("/no/such/shaders")).0);
+    assert!(err.contains("/no/such/shaders"), "{err}");
+}
+
+#[test]
 fn a_scene_can_start_with_the_fireball_flying() {
     let path = scene_file("fireball-on.toml", "[fireball]\nstarts_active = true\n");
     let path = path.to_str().expect("UTF-8 path");

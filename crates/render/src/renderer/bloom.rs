@@ -5,6 +5,7 @@
 use super::HDR_FORMAT;
 use super::bindings::{filtering_sampler_entry, texture_entry, uniform_entry};
 use super::pipelines::{screen_pipeline, screen_shader};
+use crate::shaders::ShaderSet;
 use crate::view::Bloom;
 
 /// Most levels of the chain: the smallest is 1/64 of the frame, a glow
@@ -27,8 +28,8 @@ pub(super) struct BloomPipelines {
 }
 
 impl BloomPipelines {
-    pub fn new(device: &wgpu::Device) -> BloomPipelines {
-        let shader = screen_shader(device, &crate::shaders::BLOOM);
+    pub fn new(device: &wgpu::Device, shaders: &ShaderSet) -> BloomPipelines {
+        let shader = screen_shader(device, shaders, &crate::shaders::BLOOM);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("bloom"),
             entries: &[

@@ -4,6 +4,7 @@
 
 use super::bindings::uniform_entry;
 use super::pipelines::screen_pipeline;
+use crate::shaders::ShaderSet;
 
 pub(super) struct Cursor {
     pipeline: wgpu::RenderPipeline,
@@ -16,10 +17,14 @@ pub(super) struct Cursor {
 
 impl Cursor {
     /// A cursor, hidden, for frames in `output_format`.
-    pub fn new(device: &wgpu::Device, output_format: wgpu::TextureFormat) -> Cursor {
+    pub fn new(
+        device: &wgpu::Device,
+        shaders: &ShaderSet,
+        output_format: wgpu::TextureFormat,
+    ) -> Cursor {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(crate::shaders::CURSOR.name),
-            source: wgpu::ShaderSource::Wgsl(crate::shaders::CURSOR.source.into()),
+            source: wgpu::ShaderSource::Wgsl(shaders.source(&crate::shaders::CURSOR).into()),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("cursor"),

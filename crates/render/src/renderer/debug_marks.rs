@@ -8,6 +8,7 @@ use crate::camera::Camera;
 use crate::debug_view::{DebugMark, mark_scale};
 use crate::gpu::Gpu;
 use crate::instances::InstanceBuffer;
+use crate::shaders::ShaderSet;
 
 /// The shader's `Overlay`.
 #[repr(C)]
@@ -29,10 +30,14 @@ pub(super) struct DebugMarksPass {
 
 impl DebugMarksPass {
     /// The pass, for frames in `output_format`.
-    pub fn new(device: &wgpu::Device, output_format: wgpu::TextureFormat) -> DebugMarksPass {
+    pub fn new(
+        device: &wgpu::Device,
+        shaders: &ShaderSet,
+        output_format: wgpu::TextureFormat,
+    ) -> DebugMarksPass {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(crate::shaders::DEBUG_MARKS.name),
-            source: wgpu::ShaderSource::Wgsl(crate::shaders::DEBUG_MARKS.source.into()),
+            source: wgpu::ShaderSource::Wgsl(shaders.source(&crate::shaders::DEBUG_MARKS).into()),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("debug marks"),

@@ -23,6 +23,7 @@ use crate::instances::{self, BallInstance, Instance, InstanceBuffer, PreviousMod
 use crate::irradiance::{DIRECTIONS, IrradianceVolume, MAX_PROBES};
 use crate::lighting;
 use crate::mesh::{GpuMesh, MeshData};
+use crate::shaders::ShaderSet;
 use crate::shadow::{self, DrawnFaces, ShadowCube};
 use crate::temporal::{self, TemporalState};
 use crate::view::{PointLight, SceneView};
@@ -259,14 +260,29 @@ struct FaceRanges {
 }
 
 impl Renderer {
-    /// Builds the pipelines for frames in `output_format`. `tumbler_mesh`
-    /// and `paint` are the tumbler's mesh and texture.
+    /// Builds the pipelines for frames in `output_format` with the shipped
+    /// shaders. `tumbler_mesh` and `paint` are the tumbler's mesh and
+    /// texture.
     pub fn new(
         gpu: &Gpu,
         settings: RenderSettings,
         output_format: wgpu::TextureFormat,
         tumbler_mesh: &MeshData,
         paint: &image::RgbaImage,
+    ) -> Renderer {
+        let shipped = ShaderSet::shipped();
+        Renderer::with_shaders(gpu, settings, output_format, tumbler_mesh, paint, &shipped)
+    }
+
+    /// As [`Renderer::new`], drawing with `shaders` (a folder's, checked by
+    /// [`ShaderSet::load`]).
+    pub fn with_shaders(
+        gpu: &Gpu,
+        settings: RenderSettings,
+        output_format: wgpu::TextureFormat,
+        tumbler_mesh: &MeshData,
+        paint: &image::RgbaImage,
+        shaders: &ShaderSet,
     ) -> Renderer {
         let device = &gpu.device;
         let settings = RenderSettings {
@@ -310,9 +326,9 @@ impl Renderer {
         Renderer {
             settings,
             output_format,
-            pipelines: Pipelines::new(device, &layouts, &settings, output_format),
-            bloom: BloomPipelines::new(device),
-            occlusion: OcclusionPipeline::new(device),
+            pipelines: Pipelines::new(device, shaders, &layouts, &settings, output_format),
+            bloom: BloomPipelines::new(device, shaders),
+            occlusion: OcclusionPipeline::new(device, shaders),
             tonemap_layout: layouts.tonemap,
             upscale_layout: layouts.upscale,
             smooth_sampler: device.create_sampler(&wgpu::SamplerDescriptor {
@@ -323,7 +339,7 @@ impl Renderer {
                 min_filter: wgpu::FilterMode::Linear,
                 ..Default::default()
             }),
-            cursor: Cursor::new(device, output_format),
+            cursor: Cursor::new(device, shaders, output_format),
             globals,
             tonemap_params,
             scene_bind_group,
@@ -344,12 +360,12 @@ impl Renderer {
             gpu_balls: None,
             shadow_balls: InstanceBuffer::new(device, "shadow balls"),
             shadow_tumblers: InstanceBuffer::new(device, "shadow tumblers"),
-            marks: DebugMarksPass::new(device, output_format),
+            marks: DebugMarksPass::new(device, shaders, output_format),
             faces_reached: Vec::new(),
             drawn_faces: DrawnFaces::default(),
             tumbler_bounds: tumbler_mesh.bounding_sphere(),
             targets: None,
-            taa: TaaPipelines::new(device, output_format),
+            taa: TaaPipelines::new(device, shaders, output_format),
             history: None,
             temporal: TemporalState::default(),
             timer: None,

@@ -6,6 +6,7 @@
 use super::bindings::{texture_entry, uniform_entry};
 use super::pipelines::{screen_pipeline, screen_shader};
 use crate::camera::Camera;
+use crate::shaders::ShaderSet;
 use bytemuck::{Pod, Zeroable};
 
 /// The texture the openness is drawn into: one channel is all it needs.
@@ -36,8 +37,8 @@ pub(super) struct OcclusionPipeline {
 }
 
 impl OcclusionPipeline {
-    pub fn new(device: &wgpu::Device) -> OcclusionPipeline {
-        let shader = screen_shader(device, &crate::shaders::OCCLUSION);
+    pub fn new(device: &wgpu::Device, shaders: &ShaderSet) -> OcclusionPipeline {
+        let shader = screen_shader(device, shaders, &crate::shaders::OCCLUSION);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("occlusion"),
             entries: &[

@@ -6,7 +6,7 @@ use super::taa::MOTION_FORMAT;
 use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT, RenderSettings};
 use crate::instances::{BALL_MATERIAL, BallInstance, Instance, PreviousModel};
 use crate::mesh::Vertex;
-use crate::shaders::{self, ShaderFile};
+use crate::shaders::{self, ShaderFile, ShaderSet};
 use crate::shadow;
 
 /// Every pipeline of a frame but the cursor's.
@@ -35,16 +35,18 @@ impl Pipelines {
     /// depth as the adapter allows), tone mapping into `output_format`.
     pub fn new(
         device: &wgpu::Device,
+        shaders: &ShaderSet,
         layouts: &Layouts,
         settings: &RenderSettings,
         output_format: wgpu::TextureFormat,
     ) -> Pipelines {
         let msaa = settings.msaa;
+        let scene = shaders.source(&shaders::SCENE);
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some(shaders::SCENE.name),
-            source: wgpu::ShaderSource::Wgsl(scene_shader(settings.early_ball_depth).into()),
+            source: wgpu::ShaderSource::Wgsl(scene_shader(scene, settings.early_ball_depth).into()),
         });
-        let tonemap_shader = screen_shader(device, &shaders::TONEMAP);
+        let tonemap_shader = screen_shader(device, shaders, &shaders::TONEMAP);
 
         let scene_pipeline_layout =
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -235,7 +237,7 @@ impl Pipelines {
             output_format.into(),
         );
 
-        let upscale_shader = screen_shader(device, &shaders::UPSCALE);
+        let upscale_shader = screen_shader(device, shaders, &shaders::UPSCALE);
         let upscale_pipeline = screen_pipeline(
             device,
             "upscale",
@@ -291,13 +293,16 @@ fn scene_targets(
     targets
 }
 
-/// The shader of a pass over whole images: `file` after the shared
-/// vertex shader that covers the target (screen.wgsl's `vs_screen`).
-pub(super) fn screen_shader(device: &wgpu::Device, file: &ShaderFile) -> wgpu::ShaderModule {
-    let (screen, source) = (shaders::SCREEN.source, file.source);
+/// The shader of a pass over whole images: `file` of `shaders` after the
+/// shared vertex shader that covers the target (screen.wgsl's `vs_screen`).
+pub(super) fn screen_shader(
+    device: &wgpu::Device,
+    shaders: &ShaderSet,
+    file: &ShaderFile,
+) -> wgpu::ShaderModule {
     device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(file.name),
-        source: wgpu::ShaderSource::Wgsl(format!("{screen}\n{source}").into()),
+        source: wgpu::ShaderSource::Wgsl(shaders.screen_pass(file).into()),
     })
 }
 
@@ -370,8 +375,7 @@ const EARLY_DEPTH_TEST: &str = "@early_depth_test(greater_equal)";
 /// may then drop a hidden fragment before tracing its sphere. The promise
 /// is a native feature that not every adapter has, so it is added only
 /// where asked for.
-fn scene_shader(early_ball_depth: bool) -> String {
-    let source = shaders::SCENE.source;
+fn scene_shader(source: &str, early_ball_depth: bool) -> String {
     if !early_ball_depth {
         return source.to_string();
     }
@@ -392,8 +396,8 @@ mod tests {
     #[test]
     fn early_ball_depth_marks_both_ball_fragment_shaders_and_nothing_else() {
         let marked = format!("@fragment {EARLY_DEPTH_TEST}\nfn ");
-        assert!(!scene_shader(false).contains(&marked));
-        let early = scene_shader(true);
+        assert!(!scene_shader(shaders::SCENE.source, false).contains(&marked));
+        let early = scene_shader(shaders::SCENE.source, true);
         for entry in BALL_FRAGMENT_ENTRIES {
             assert!(
                 early.contains(&format!("{EARLY_DEPTH_TEST}\nfn {entry}")),

@@ -4,6 +4,7 @@
 
 use super::bindings::{filtering_sampler_entry, texture_entry, uniform_entry};
 use super::pipelines::{screen_pipeline, screen_pipeline_into, screen_shader};
+use crate::shaders::ShaderSet;
 use wgpu::util::DeviceExt;
 
 /// The resolved history: the picture, and in alpha the weight it holds.
@@ -96,7 +97,11 @@ pub(super) struct ResolveInputs<'a> {
 }
 
 impl TaaPipelines {
-    pub fn new(device: &wgpu::Device, output_format: wgpu::TextureFormat) -> TaaPipelines {
+    pub fn new(
+        device: &wgpu::Device,
+        shaders: &ShaderSet,
+        output_format: wgpu::TextureFormat,
+    ) -> TaaPipelines {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("taa"),
             entries: &[
@@ -121,7 +126,7 @@ impl TaaPipelines {
                 texture_entry(6, false),
             ],
         });
-        let shader = screen_shader(device, &crate::shaders::TAA);
+        let shader = screen_shader(device, shaders, &crate::shaders::TAA);
         let target = Some(wgpu::ColorTargetState::from(NEIGHBOURHOOD_FORMAT));
         let around = screen_pipeline_into(
             device,
