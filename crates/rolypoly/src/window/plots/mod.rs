@@ -368,7 +368,7 @@ impl Plots {
     }
 
     /// The samples kept, oldest first.
-    pub fn samples(&self) -> impl ExactSizeIterator<Item = &Sample> + DoubleEndedIterator + Clone {
+    pub fn samples(&self) -> impl ExactSizeIterator<Item = &Sample> + DoubleEndedIterator {
         self.kept.iter().map(|k| &k.sample)
     }
 
@@ -412,9 +412,7 @@ impl Plots {
     /// step's impulses added on; and the worst gap between the momentum's change
     /// from one sample to the next and the impulses of the steps between
     /// (N s). `None` where the engine counts no impulses.
-    pub fn momentum_from_impulses(
-        &self,
-    ) -> Option<(impl Iterator<Item = (f64, DVec3)> + Clone + '_, f64)> {
+    pub fn momentum_from_impulses(&self) -> Option<(impl Iterator<Item = (f64, DVec3)> + '_, f64)> {
         self.kept.back()?.told?;
         let worst = self.kept.iter().map(|k| k.gap).fold(0.0, f64::max);
         let told = self
