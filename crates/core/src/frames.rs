@@ -8,7 +8,8 @@ use anyhow::Context;
 use glam::Vec3;
 use rolypoly_physics::WorldConfig;
 use rolypoly_render::{
-    Camera, DebugViews, LightConfig, MeshData, Quality, QualityChoice, RenderSettings, Snapshot,
+    Camera, DebugViews, FrameView, LightConfig, MeshData, Quality, QualityChoice, RenderSettings,
+    Snapshot,
 };
 
 use rolypoly_render::Gpu;
@@ -45,6 +46,9 @@ pub struct FrameOptions {
     /// Temporal anti-aliasing with upsampling (see
     /// [`rolypoly_render::jitter`]): every frame drawn adds to the next.
     pub temporal: bool,
+    /// What the frames show: the finished picture (none) or one of its
+    /// passes.
+    pub view: Option<FrameView>,
 }
 
 /// Frames a second of the frames drawn before a temporal picture's moment,
@@ -109,7 +113,7 @@ impl Frames {
             Some(dir) => ShaderSet::load(dir)?,
             None => ShaderSet::shipped(),
         };
-        let snapshot = Snapshot::drawn_with(
+        let mut snapshot = Snapshot::drawn_with(
             Gpu::headless()?,
             config,
             settings,
@@ -117,6 +121,7 @@ impl Frames {
             mesh,
             &shaders,
         )?;
+        snapshot.renderer.set_view(args.view.unwrap_or_default());
         let camera = chosen_camera(args.camera, config);
         Ok(Frames {
             snapshot,
@@ -215,6 +220,14 @@ impl Frames {
         snap.target
             .render(&snap.gpu, &mut snap.renderer, &view, camera)?;
         Ok(())
+    }
+
+    /// What the frames show, and the caption that says so for a frame of
+    /// `sim` lit by `light`.
+    pub fn view_caption(&self, sim: &Simulation, light: &LightConfig) -> (FrameView, String) {
+        let view = sim.view_showing(light, &self.debug);
+        let renderer = &self.snapshot.renderer;
+        (renderer.view(), renderer.caption(&view, &self.camera))
     }
 
     /// The device the frames are drawn with.

@@ -41,6 +41,12 @@ struct Globals {
     // measured between the two (see `motion_of`).
     motion_view_proj: mat4x4<f32>,
     previous_view_proj: mat4x4<f32>,
+    // What the frame shows (frame_view.rs): x: VIEW_FINAL or one pass's
+    // VIEW_*; y, z: the depth view's distances for white and black;
+    // w: the motion view's pixels a frame at full brightness.
+    frame_view: vec4<f32>,
+    // xy: the scene's size in pixels, for the motion view; zw: unused.
+    frame_size: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> globals: Globals;
@@ -247,12 +253,23 @@ fn fs_lit(in: VertexOut) -> SceneFragment {
         base = plaster(base, in.world);
     }
     let n = normalize(in.normal);
-    return SceneFragment(vec4<f32>(blinn_phong(base, in.world, n, in.material), 1.0), geometry_of(in.world, n), motion_of(in.world, in.previous));
+    let motion = motion_of(in.world, in.previous);
+    return SceneFragment(vec4<f32>(shown(base, in.world, n, in.material, motion), 1.0), geometry_of(in.world, n), motion);
 }
 
-// Diffuse and specular light from a point light at `position` of `color`
-// that falls off as `falloff` says.
-fn point_light(position: vec3<f32>, color: vec3<f32>, falloff: vec4<f32>, base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>, material: vec4<f32>) -> vec3<f32> {
+// The terms of Blinn-Phong at a point, each in linear light.
+struct LightTerms {
+    ambient: vec3<f32>,
+    diffuse: vec3<f32>,
+    specular: vec3<f32>,
+    bounce: vec3<f32>,
+    // The share of the ceiling light that reaches the point.
+    visible: f32,
+};
+
+// Diffuse (xyz of the first) and specular light from a point light at
+// `position` of `color` that falls off as `falloff` says.
+fn point_light(position: vec3<f32>, color: vec3<f32>, falloff: vec4<f32>, base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, v: vec3<f32>, material: vec4<f32>) -> array<vec3<f32>, 2> {
     let to_light = position - world;
     let distance = length(to_light);
     let l = to_light / distance;
@@ -267,27 +284,104 @@ fn point_light(position: vec3<f32>, color: vec3<f32>, falloff: vec4<f32>, base: 
     let light = color * window / (falloff.x + falloff.y * distance + falloff.z * distance * distance);
     let diffuse = base * max(dot(n, l), 0.0) * light;
     let specular = material.y * pow(max(dot(n, h), 0.0), material.z) * light * step(0.0, dot(n, l));
-    return diffuse + specular;
+    return array<vec3<f32>, 2>(diffuse, specular);
 }
 
 // Ambient; where the ceiling light reaches, its diffuse and specular; the
-// fireball's light; and the light the room's surfaces send back.
-fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f32>) -> vec3<f32> {
+// fireball's; and the light the room's surfaces send back.
+fn light_terms(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f32>) -> LightTerms {
     let v = normalize(globals.camera_pos.xyz - world);
-    let visible = light_visibility(world, n);
-    var color = visible * point_light(globals.light_pos.xyz, globals.light_color.rgb, globals.light_falloff, base, world, n, v, material);
+    var terms: LightTerms;
+    terms.visible = light_visibility(world, n);
+    let ceiling = point_light(globals.light_pos.xyz, globals.light_color.rgb, globals.light_falloff, base, world, n, v, material);
+    terms.diffuse = terms.visible * ceiling[0];
+    terms.specular = terms.visible * ceiling[1];
     if globals.fireball_pos.w > 0.5 {
-        color += point_light(globals.fireball_pos.xyz, globals.fireball_color.rgb, globals.fireball_falloff, base, world, n, v, material);
+        let fireball = point_light(globals.fireball_pos.xyz, globals.fireball_color.rgb, globals.fireball_falloff, base, world, n, v, material);
+        terms.diffuse += fireball[0];
+        terms.specular += fireball[1];
     }
-    // The light the room bounces back: worked out from each surface in its
-    // colour (see lighting.rs), or, with the bounce off, the ambient
-    // strength's even light.
+    terms.ambient = base * globals.light_color.w;
+    // The light the room bounces back, worked out from each surface in its
+    // colour (see lighting.rs); it takes the ambient's place.
     if globals.room.w > 0.5 {
-        color += base * indirect_light(world, n);
-    } else {
-        color += base * globals.light_color.w;
+        terms.bounce = base * indirect_light(world, n);
     }
-    return color;
+    return terms;
+}
+
+fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f32>) -> vec3<f32> {
+    let terms = light_terms(base, world, n, material);
+    var indirect = terms.ambient;
+    if globals.room.w > 0.5 {
+        indirect = terms.bounce;
+    }
+    return terms.diffuse + terms.specular + indirect;
+}
+
+// --- the frame's views (frame_view.rs) -----------------------------------------
+
+const VIEW_FINAL: u32 = 0u;
+const VIEW_ALBEDO: u32 = 1u;
+const VIEW_NORMALS: u32 = 2u;
+const VIEW_DEPTH: u32 = 3u;
+const VIEW_SHADOW: u32 = 4u;
+const VIEW_AMBIENT: u32 = 5u;
+const VIEW_DIFFUSE: u32 = 6u;
+const VIEW_SPECULAR: u32 = 7u;
+const VIEW_BOUNCE: u32 = 8u;
+const VIEW_MOTION: u32 = 9u;
+
+// A motion on screen (in uv, see `motion_of`) as colour: its direction as
+// a hue, three cosines a third of a turn apart (so r + g + b is 1.5 times
+// the brightness), its length in pixels as brightness.
+fn motion_color(motion: vec2<f32>) -> vec3<f32> {
+    let pixels = motion * globals.frame_size.xy;
+    let length_px = length(pixels);
+    if length_px == 0.0 {
+        return vec3<f32>(0.0);
+    }
+    let angle = atan2(pixels.y, pixels.x);
+    let third = 2.0943951;
+    let hue = 0.5 + 0.5 * vec3<f32>(cos(angle), cos(angle - third), cos(angle + third));
+    return hue * min(length_px / globals.frame_view.w, 1.0);
+}
+
+// What a lit surface writes: its lit colour, or in a view of one pass,
+// that pass's value.
+fn shown(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f32>, motion: vec2<f32>) -> vec3<f32> {
+    let view = u32(globals.frame_view.x);
+    if view == VIEW_FINAL {
+        return blinn_phong(base, world, n, material);
+    }
+    return surface_view(view, base, world, n, light_terms(base, world, n, material), motion);
+}
+
+// The value view `view` shows of a surface whose light is `terms`.
+fn surface_view(view: u32, base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, terms: LightTerms, motion: vec2<f32>) -> vec3<f32> {
+    switch view {
+        case VIEW_ALBEDO: { return base; }
+        case VIEW_NORMALS: { return n * 0.5 + 0.5; }
+        case VIEW_DEPTH: {
+            let d = distance(world, globals.camera_pos.xyz);
+            return vec3<f32>(clamp((globals.frame_view.z - d) / (globals.frame_view.z - globals.frame_view.y), 0.0, 1.0));
+        }
+        case VIEW_SHADOW: { return vec3<f32>(terms.visible); }
+        case VIEW_AMBIENT: { return terms.ambient; }
+        case VIEW_DIFFUSE: { return terms.diffuse; }
+        case VIEW_SPECULAR: { return terms.specular; }
+        case VIEW_BOUNCE: { return terms.bounce; }
+        case VIEW_MOTION: { return motion_color(motion); }
+        default: { return vec3<f32>(0.0); }
+    }
+}
+
+// What an unlit surface (a lamp) writes in a view: in the term views
+// nothing, it is no term of Blinn-Phong's; in the others as a surface.
+fn unlit_view(view: u32, emitted: vec3<f32>, world: vec3<f32>, n: vec3<f32>, motion: vec2<f32>) -> vec3<f32> {
+    var terms: LightTerms;
+    terms.visible = 1.0;
+    return surface_view(view, emitted, world, n, terms, motion);
 }
 
 // --- one bounce of light from the room's surfaces ----------------------------
@@ -473,10 +567,10 @@ fn fs_ball(in: BallOut) -> BallFragment {
     let n = normalize(hit.point - in.sphere.xyz);
     var out: BallFragment;
     let material = vec4<f32>(BALL_KIND, BALL_SPECULAR, BALL_SHININESS, 0.0);
-    out.color = vec4<f32>(blinn_phong(in.color, hit.point, n, material), coverage);
-    out.geometry = geometry_of(hit.point, n);
     // The ball moves as a whole: its spin does not show on its one colour.
     out.motion = motion_of(hit.point, hit.point - in.sphere.xyz + in.previous_centre);
+    out.color = vec4<f32>(shown(in.color, hit.point, n, material, out.motion), coverage);
+    out.geometry = geometry_of(hit.point, n);
     out.depth = ball_depth(globals.view_proj, hit.point, in.clip.z);
     return out;
 }
@@ -484,7 +578,14 @@ fn fs_ball(in: BallOut) -> BallFragment {
 // Unlit and glowing: the light's bulb (and, with it, anything emissive).
 @fragment
 fn fs_emissive(in: VertexOut) -> SceneFragment {
-    return SceneFragment(vec4<f32>(in.color.rgb * in.material.w, 1.0), geometry_of(in.world, normalize(in.normal)), motion_of(in.world, in.previous));
+    let n = normalize(in.normal);
+    let motion = motion_of(in.world, in.previous);
+    var color = in.color.rgb * in.material.w;
+    let view = u32(globals.frame_view.x);
+    if view != VIEW_FINAL {
+        color = unlit_view(view, in.color.rgb, in.world, n, motion);
+    }
+    return SceneFragment(vec4<f32>(color, 1.0), geometry_of(in.world, n), motion);
 }
 
 // Glowing and see-through, unlit, in premultiplied alpha: rgb is the light

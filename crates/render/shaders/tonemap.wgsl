@@ -9,7 +9,16 @@ struct Params {
     // (0: no bloom); z: occlusion on (1) or off (0); w: the bloom's chain
     // has a second level (1) or not (0).
     values: vec4<f32>,
+    // x: how the frame is shown (one of SHOW_*; frame_view.rs's `Finish`);
+    // y: the output encodes sRGB itself (1) or not (0).
+    view: vec4<f32>,
 };
+
+const SHOW_FRAME: u32 = 0u;
+const SHOW_DATA: u32 = 1u;
+const SHOW_CURVE: u32 = 2u;
+const SHOW_OCCLUSION: u32 = 3u;
+const SHOW_BLOOM: u32 = 4u;
 @group(0) @binding(1) var<uniform> params: Params;
 @group(0) @binding(2) var glow: texture_2d<f32>;
 @group(0) @binding(3) var openness: texture_2d<f32>;
@@ -48,11 +57,54 @@ fn glow_at(uv: vec2<f32>) -> vec3<f32> {
     return sum;
 }
 
+// A value to be written as the picture's own (a view's data): where the
+// output encodes sRGB, the value whose encoding it is.
+fn as_data(value: vec3<f32>) -> vec3<f32> {
+    let v = clamp(value, vec3<f32>(0.0), vec3<f32>(1.0));
+    if params.view.y < 0.5 {
+        return v;
+    }
+    let low = v / 12.92;
+    let high = pow((v + 0.055) / 1.055, vec3<f32>(2.4));
+    return select(high, low, v <= vec3<f32>(0.04045));
+}
+
+// The bloom's chain, level by level: the largest over the left half, each
+// smaller one in a band of the right half, top to bottom.
+fn bloom_levels(uv: vec2<f32>) -> vec3<f32> {
+    let levels = f32(textureNumLevels(glow));
+    if uv.x < 0.5 || levels < 2.0 {
+        return textureSampleLevel(glow, smooth_sampler, vec2<f32>(min(uv.x * 2.0, 1.0), uv.y), 0.0).rgb;
+    }
+    let bands = levels - 1.0;
+    let band = min(floor(uv.y * bands), bands - 1.0);
+    let inside = vec2<f32>((uv.x - 0.5) * 2.0, uv.y * bands - band);
+    return textureSampleLevel(glow, smooth_sampler, inside, band + 1.0).rgb;
+}
+
 @fragment
 fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     // Drawn at the size the scene was lit at: each pixel reads its own.
     let uv = position.xy / vec2<f32>(textureDimensions(hdr));
     var color = textureLoad(hdr, vec2<i32>(position.xy), 0).rgb;
+    switch u32(params.view.x) {
+        case SHOW_DATA: { return vec4<f32>(as_data(color), 1.0); }
+        case SHOW_CURVE: { return vec4<f32>(aces(color * params.values.x), 1.0); }
+        case SHOW_OCCLUSION: {
+            var open = 1.0;
+            if params.values.z > 0.5 {
+                open = open_at(uv);
+            }
+            return vec4<f32>(as_data(vec3<f32>(open)), 1.0);
+        }
+        case SHOW_BLOOM: {
+            if params.values.y <= 0.0 {
+                return vec4<f32>(0.0, 0.0, 0.0, 1.0);
+            }
+            return vec4<f32>(aces(bloom_levels(uv) * params.values.x), 1.0);
+        }
+        default: {}
+    }
     if params.values.z > 0.5 {
         color *= open_at(uv);
     }

@@ -12,6 +12,7 @@
 mod camera;
 mod debug_view;
 mod finish;
+mod frame_view;
 mod gpu;
 mod instances;
 mod irradiance;
@@ -36,13 +37,16 @@ pub use debug_view::{
     speed_color,
 };
 pub use finish::{BALL_FINISH, FLOOR_FINISH, Finish, TUMBLER_FINISH, WALL_FINISH};
+pub use frame_view::{FrameFacts, FrameView, MOTION_FULL_PIXELS, SHADOW_CROSS, UnknownView};
 pub use gpu::{Gpu, HDR_FORMAT, RenderError};
 pub use lighting::{attenuated, power_of};
 pub use mesh::{MeshData, Vertex};
 pub use offscreen::{MAX_SIDE, OFFSCREEN_FORMAT, OffscreenTarget};
 pub use paint::tumbler_paint;
 pub use quality::{AUTO_TARGET_FPS, AutoQuality, Quality, QualityChoice};
-pub use renderer::{FrameStats, PassTimes, RenderSettings, Renderer, StampSlots};
+pub use renderer::{
+    FrameStats, PassTimes, RenderSettings, Renderer, StampSlots, shadow_cross_place,
+};
 pub use room::{Surface, surfaces as room_surfaces};
 pub use scale::{DynamicScale, MAX_SCALE, MIN_SCALE};
 pub use snapshot::Snapshot;

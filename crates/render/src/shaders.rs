@@ -83,8 +83,15 @@ pub const CURSOR: ShaderFile = ShaderFile {
     draws: "grab mode's arrow cursor over the finished frame",
 };
 
+/// The views of the frame drawn by a pass of their own.
+pub const FRAME_VIEWS: ShaderFile = ShaderFile {
+    name: "frame_views.wgsl",
+    source: include_str!("../shaders/frame_views.wgsl"),
+    draws: "the frame's views with a pass of their own: the shadow cube unfolded, the pixels whose multisamples disagree, the temporal history's weight",
+};
+
 /// Every shipped shader, in the order a frame uses them.
-pub const SHIPPED: [ShaderFile; 9] = [
+pub const SHIPPED: [ShaderFile; 10] = [
     SCENE,
     SCREEN,
     OCCLUSION,
@@ -94,6 +101,7 @@ pub const SHIPPED: [ShaderFile; 9] = [
     TAA,
     DEBUG_MARKS,
     CURSOR,
+    FRAME_VIEWS,
 ];
 
 /// The README written beside the exported files.
@@ -280,7 +288,7 @@ impl ShaderSet {
 }
 
 /// The passes over whole images, compiled after screen.wgsl.
-const SCREEN_PASSES: [ShaderFile; 5] = [OCCLUSION, BLOOM, TONEMAP, UPSCALE, TAA];
+const SCREEN_PASSES: [ShaderFile; 6] = [OCCLUSION, BLOOM, TONEMAP, UPSCALE, TAA, FRAME_VIEWS];
 
 /// `source` after the shared vertex shader `screen`.
 fn screen_pass(screen: &str, source: &str) -> String {

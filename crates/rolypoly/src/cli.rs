@@ -8,7 +8,7 @@ use clap::{Args, Parser, Subcommand};
 use crate::engine::Engine;
 use crate::frames::{FrameOptions, Frames};
 use crate::scene::Overrides;
-use rolypoly_render::{DebugViews, LightConfig, QualityChoice};
+use rolypoly_render::{DebugViews, FrameView, LightConfig, QualityChoice};
 
 /// Help section of the options shared by every command.
 const SCENE_HEADING: &str = "Scene options";
@@ -223,7 +223,16 @@ impl FrameArgs {
             show: self.show,
             scale: self.scale,
             temporal: self.temporal,
+            view: match self.view {
+                Some(ViewChoice::Show(view)) => Some(view),
+                _ => None,
+            },
         }
+    }
+
+    /// Whether `--view list` asked for the list of views instead of frames.
+    pub fn lists_views(&self) -> bool {
+        self.view == Some(ViewChoice::List)
     }
 
     /// Frames of `size` of the scene `config`, drawn as these flags say at
@@ -380,9 +389,23 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub truth: ReferenceArgs,
 
+    /// The PNG file to write (needed unless `--view list` asks only for
+    /// the views).
+    #[arg(
+        long = "out",
+        value_name = "FILE.png",
+        required_unless_present = "view"
+    )]
+    pub out_file: Option<PathBuf>,
+}
+
+impl RenderArgs {
     /// The PNG file to write.
-    #[arg(long, value_name = "FILE.png")]
-    pub out: PathBuf,
+    pub fn out(&self) -> anyhow::Result<&Path> {
+        self.out_file
+            .as_deref()
+            .ok_or_else(|| anyhow::anyhow!("render needs --out FILE.png: the PNG file to write"))
+    }
 }
 
 /// The path-traced reference of a frame, and the real-time frame measured
@@ -516,6 +539,13 @@ pub struct FrameArgs {
     #[arg(long, conflicts_with = "msaa")]
     pub temporal: bool,
 
+    /// Draw one pass of the frame instead of the finished picture: final,
+    /// albedo, normals, depth, shadow-cube, shadow, ambient, diffuse,
+    /// specular, bounce, occlusion, bloom, motion, history or msaa-edges;
+    /// `list` prints each with what it shows.
+    #[arg(long, value_name = "NAME", value_parser = parse_view)]
+    pub view: Option<ViewChoice>,
+
     /// Camera position and the point it looks at: EX,EY,EZ,TX,TY,TZ in metres
     /// (default: the whole room from outside its front wall).
     #[arg(long, value_name = "EYE,TARGET", value_parser = parse_camera, allow_hyphen_values = true)]
@@ -572,6 +602,24 @@ pub struct MakeTumblerObjArgs {
 }
 
 /// Debug views by name, comma-separated.
+/// What `--view` asks for: one view of the frame, or their list.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ViewChoice {
+    /// Draw this view.
+    Show(FrameView),
+    /// Print every view's name and what it shows.
+    List,
+}
+
+fn parse_view(text: &str) -> Result<ViewChoice, String> {
+    if text == "list" {
+        return Ok(ViewChoice::List);
+    }
+    text.parse()
+        .map(ViewChoice::Show)
+        .map_err(|e: rolypoly_render::UnknownView| e.to_string())
+}
+
 fn parse_show(text: &str) -> Result<DebugViews, String> {
     DebugViews::parse(text)
 }

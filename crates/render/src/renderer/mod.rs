@@ -18,6 +18,7 @@
 //! into ([`targets`]), the two post passes and the cursor ([`cursor`]).
 
 use crate::camera::Camera;
+use crate::frame_view::{Drawn, Finish, FrameView};
 use crate::gpu::{Gpu, RenderError};
 use crate::instances::{self, BallInstance, Instance, InstanceBuffer, PreviousModel, Ranges};
 use crate::irradiance::{DIRECTIONS, IrradianceVolume, MAX_PROBES};
@@ -32,6 +33,8 @@ use bloom::BloomPipelines;
 use bytemuck::{Pod, Zeroable};
 use cursor::Cursor;
 use debug_marks::DebugMarksPass;
+pub use frame_views::shadow_cross_place;
+use frame_views::{FrameViewsPass, ViewSource};
 use glam::UVec3;
 use occlusion::OcclusionPipeline;
 use pipelines::Pipelines;
@@ -47,6 +50,7 @@ mod bindings;
 mod bloom;
 mod cursor;
 mod debug_marks;
+mod frame_views;
 mod occlusion;
 mod pipelines;
 mod taa;
@@ -168,6 +172,8 @@ struct Globals {
     irradiance_probes: [f32; 4],
     motion_view_proj: [[f32; 4]; 4],
     previous_view_proj: [[f32; 4]; 4],
+    frame_view: [f32; 4],
+    frame_size: [f32; 4],
 }
 
 /// The camera's view-projections this frame: the one it is drawn with
@@ -251,6 +257,10 @@ pub struct Renderer {
     timer: Option<GpuTimer>,
     /// Whether the passes are timed (the profiler is open).
     timing: bool,
+    /// What the frames show: the finished picture or one pass.
+    view: FrameView,
+    /// The pass of the views that no frame target holds.
+    frame_views: FrameViewsPass,
 }
 
 /// Where each face's casters lie in the shadow lists.
@@ -306,7 +316,7 @@ impl Renderer {
         });
         let tonemap_params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("tonemap params"),
-            contents: bytemuck::cast_slice(&[settings.exposure, 0.0, 0.0, 0.0]),
+            contents: bytemuck::cast_slice(&[settings.exposure, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let shadow_cube = ShadowCube::new(device, settings.shadow_size, &layouts.face);
@@ -370,7 +380,34 @@ impl Renderer {
             temporal: TemporalState::default(),
             timer: None,
             timing: false,
+            view: FrameView::Final,
+            frame_views: FrameViewsPass::new(device, shaders, output_format, settings.msaa),
         }
+    }
+
+    /// Shows `view` in the frames that follow: the finished picture, or
+    /// one of its passes (see [`FrameView`]).
+    pub fn set_view(&mut self, view: FrameView) {
+        self.view = view;
+    }
+
+    /// What the frames show.
+    pub fn view(&self) -> FrameView {
+        self.view
+    }
+
+    /// The caption of the view shown, for a frame of `view` seen by
+    /// `camera`: its name, what its colours mean, and why it is empty
+    /// where a flag or the level turned its pass off.
+    pub fn caption(&self, view: &SceneView, camera: &Camera) -> String {
+        let facts = crate::frame_view::FrameFacts::new(
+            self.settings.msaa,
+            self.settings.shadows,
+            self.settings.temporal,
+            &view.light,
+            farthest_from(camera.eye, view.room_size),
+        );
+        self.view.caption(&facts)
     }
 
     /// Times each frame's passes on the GPU from now on (where the adapter
@@ -485,7 +522,7 @@ impl Renderer {
             .as_ref()
             .map_or((width, height), |t| t.scene_size);
         let projections = self.projections(camera, (width, height), scene_size);
-        let globals = self.globals(view, camera, &projections, probes);
+        let globals = self.globals(view, camera, &projections, (probes, scene_size));
         gpu.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
 
@@ -528,22 +565,35 @@ impl Renderer {
             .light
             .bloom
             .map_or(0.0, |b| b.strength / targets.bloom.levels as f32);
+        let finish = match self.view.drawn() {
+            Drawn::Scene { finish, .. } | Drawn::Tonemap(finish) => finish,
+            Drawn::Final | Drawn::Extra => Finish::Frame,
+        };
         let params = [
             self.settings.exposure,
             glow,
             flag(view.light.occlusion),
             flag(targets.bloom.levels > 1),
+            finish as u32 as f32,
+            flag(self.output_format.is_srgb()),
+            0.0,
+            0.0,
         ];
         gpu.queue
             .write_buffer(&self.tonemap_params, 0, bytemuck::cast_slice(&params));
         let mut history = self.history.take();
         let resolve = history.as_mut().map(|h| (h, projections.sample_offset));
         draw_calls += self.tonemap_pass(gpu, &mut encoder, targets, output, resolve, timed);
+        if self.view.drawn() == Drawn::Extra {
+            draw_calls +=
+                self.extra_view(gpu, &mut encoder, targets, output, history.as_ref(), view);
+        }
         targets.keep_geometry(&mut encoder);
         self.history = history;
         self.keep_gpu_balls(gpu, &mut encoder);
+        // Kept off the temporal path too: the motion view reads it.
+        self.temporal.previous_view_proj = Some(projections.unjittered);
         if self.settings.temporal {
-            self.temporal.previous_view_proj = Some(projections.unjittered);
             self.temporal.frame += 1;
         }
         let mut stamps = StampSlots::default();
@@ -581,7 +631,7 @@ impl Renderer {
             return Projections {
                 drawn: unjittered,
                 unjittered,
-                previous: unjittered,
+                previous: self.temporal.previous_view_proj.unwrap_or(unjittered),
                 sample_offset: glam::Vec2::ZERO,
             };
         }
@@ -630,7 +680,7 @@ impl Renderer {
         view: &SceneView,
         camera: &Camera,
         projections: &Projections,
-        probes: UVec3,
+        (probes, scene_size): (UVec3, (u32, u32)),
     ) -> Globals {
         let light = &view.light;
         let ceiling = light.point();
@@ -657,7 +707,50 @@ impl Renderer {
             irradiance_probes: probes.as_vec3().extend(MAX_PROBES as f32).to_array(),
             motion_view_proj: projections.unjittered.to_cols_array_2d(),
             previous_view_proj: projections.previous.to_cols_array_2d(),
+            frame_view: [
+                match self.view.drawn() {
+                    Drawn::Scene { code, .. } => code as f32,
+                    _ => 0.0,
+                },
+                0.0,
+                farthest_from(camera.eye, view.room_size),
+                crate::frame_view::MOTION_FULL_PIXELS,
+            ],
+            frame_size: [scene_size.0 as f32, scene_size.1 as f32, 0.0, 0.0],
         }
+    }
+
+    /// Draws the view of the extra pass over `output`: the shadow cube, the
+    /// multisampled edges or the history, or black where its pass is off.
+    fn extra_view(
+        &self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &Targets,
+        output: &wgpu::TextureView,
+        history: Option<&History>,
+        view: &SceneView,
+    ) -> u32 {
+        let source = match self.view {
+            FrameView::ShadowCube => self
+                .settings
+                .shadows
+                .then_some(ViewSource::ShadowCube(&self.shadow_cube.array_view)),
+            FrameView::MsaaEdges => targets.geometry_msaa.as_ref().map(ViewSource::Samples),
+            _ => history.map(|h| ViewSource::History(h.latest())),
+        };
+        self.frame_views.draw(
+            &gpu.device,
+            &gpu.queue,
+            encoder,
+            output,
+            source,
+            ((targets.width, targets.height), targets.scene_size),
+            (
+                self.shadow_cube.size,
+                farthest_from(view.light.position, view.room_size),
+            ),
+        )
     }
 
     /// Where this frame's balls are drawn from: the GPU engine's buffer, or
@@ -855,6 +948,10 @@ impl Renderer {
         // ... then what glows and is not lit (the bulb, the fireball's heart) ...
         pass.set_pipeline(&self.pipelines.emissive);
         draw_calls += draw(&mut pass, &self.sphere, ranges.lamps.clone());
+        // The views show the opaque surfaces' passes alone.
+        if self.view != FrameView::Final {
+            return draw_calls;
+        }
         draw_calls + self.particles(&mut pass, ranges)
     }
 
@@ -905,7 +1002,11 @@ impl Renderer {
                     &targets.geometry_before,
                     &targets.neighbourhood,
                 );
-                match (history, temporal) {
+                // The views of one pass are shown as they are, never
+                // blended with frames before (the history view shows the
+                // finished frame's).
+                let resolving = matches!(self.view, FrameView::Final | FrameView::History);
+                match (history.filter(|_| resolving), temporal) {
                     (
                         Some((history, sample_offset)),
                         (Some(motion), Some((_, geometry_before)), Some(neighbourhood)),
@@ -986,6 +1087,20 @@ impl Renderer {
         };
         self.targets = Some(Targets::new(&gpu.device, (width, height), scene_size, &kit));
     }
+}
+
+/// How far the room's farthest corner (of a room of `room_size` standing on
+/// the floor, centred on the origin) lies from `point`.
+fn farthest_from(point: glam::Vec3, room_size: glam::Vec3) -> f32 {
+    let half = room_size * glam::Vec3::new(0.5, 1.0, 0.5);
+    let mut farthest: f32 = 0.0;
+    for corner in 0..8 {
+        let x = if corner & 1 == 0 { -half.x } else { half.x };
+        let y = if corner & 2 == 0 { 0.0 } else { half.y };
+        let z = if corner & 4 == 0 { -half.z } else { half.z };
+        farthest = farthest.max(point.distance(glam::Vec3::new(x, y, z)));
+    }
+    farthest
 }
 
 /// The irradiance volume (see irradiance.rs) and its texture.

@@ -73,6 +73,11 @@ impl History {
     }
 
     /// The output size it was made for.
+    /// The history the last frame resolved (alpha: each pixel's weight).
+    pub fn latest(&self) -> &wgpu::TextureView {
+        &self.views[self.latest]
+    }
+
     pub fn size(&self) -> (u32, u32) {
         self.size
     }

@@ -143,7 +143,15 @@ impl Targets {
             let view = texture.create_view(&Default::default());
             (texture, view)
         });
-        let geometry_msaa = multisampled("geometry msaa", GEOMETRY_FORMAT);
+        // Read sample by sample by the msaa-edges view.
+        let geometry_msaa = (kit.samples > 1).then(|| {
+            texture(
+                "geometry msaa",
+                GEOMETRY_FORMAT,
+                kit.samples,
+                drawn_and_read,
+            )
+        });
         let depth = texture(
             "depth",
             DEPTH_FORMAT,

@@ -25,6 +25,17 @@ mod sound;
 
 /// Runs the program for parsed arguments.
 pub fn run(cli: &Cli) -> anyhow::Result<()> {
+    let frame = match &cli.command {
+        Some(Command::Render(args)) => Some(&args.frame),
+        Some(Command::Record(args)) => Some(&args.frame),
+        Some(Command::Replay(args)) => Some(&args.frame),
+        _ => None,
+    };
+    if frame.is_some_and(|f| f.lists_views()) {
+        // The views are the renderer's, whatever the scene.
+        print!("{}", rolypoly_render::FrameView::list());
+        return Ok(());
+    }
     check_outputs(cli)?;
     rolypoly_gpu::set_program_gpu_timeout(cli.gpu.gpu_timeout);
     match &cli.command {
@@ -113,8 +124,8 @@ fn check_outputs(cli: &Cli) -> anyhow::Result<()> {
             }
         }
         Some(Command::Render(args)) => {
-            file_in_folder(&args.out)?;
-            named_for(&args.out, "png", "frames are PNG images")
+            file_in_folder(args.out()?)?;
+            named_for(args.out()?, "png", "frames are PNG images")
         }
         Some(Command::Record(args)) => {
             // A folder of PNGs is made if need be, in a folder that is.

@@ -40,7 +40,7 @@ pub fn render(
         sim.ticks(steps_for(args.time, sim.world.config().solver.dt));
         let picture = trace_reference(sim, light, args)?;
         if let Some(reference) = &against {
-            measure(reference, &picture, &args.out)?;
+            measure(reference, &picture, args.out()?)?;
         }
         return Ok(());
     }
@@ -50,21 +50,25 @@ pub fn render(
     }
     let steps = steps_for(args.time, sim.world.config().solver.dt);
     let image = frames.draw_at(sim, steps, light)?;
-    save(&image, &args.out)?;
+    save(&image, args.out()?)?;
     let (width, height) = args.size;
     println!(
         "wrote {} ({width}x{height}, t = {:.3} s, {})",
-        args.out.display(),
+        args.out()?.display(),
         sim.world.time(),
         frames.describe()
     );
+    let (view, caption) = frames.view_caption(sim, light);
+    if view != rolypoly_render::FrameView::Final {
+        println!("view {caption}");
+    }
     let reference = match against {
         Some(reference) => Some(reference),
         None if args.truth.compare => Some(trace_reference(sim, light, args)?),
         None => None,
     };
     if let Some(reference) = reference {
-        measure(&reference, &image, &args.out)?;
+        measure(&reference, &image, args.out()?)?;
     }
     Ok(())
 }
@@ -170,9 +174,9 @@ fn trace_reference(
     }
     let picture = rolypoly_reference::to_picture(&radiance, RenderSettings::default().exposure);
     let out = if truth.compare {
-        beside(&args.out, "reference")
+        beside(args.out()?, "reference")
     } else {
-        args.out.clone()
+        args.out()?.to_path_buf()
     };
     save(&picture, &out)?;
     println!(
