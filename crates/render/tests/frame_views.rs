@@ -1,0 +1,226 @@
+//! The views of the frame's passes, each checked by its law on whatever
+//! adapter exists (lavapipe in CI), over two seeds of where a ball hangs:
+//! the floor's normals decode to +y and each wall's to its inward normal;
+//! depth falls along the floor away from the camera; the shadow reads 0 in
+//! a ball's umbra and 1 far from it; the shadow cube's -Y face moves a
+//! ball's silhouette by where the light projects it; motion is zero over a
+//! still scene; the multisampled edges are empty with one sample and lie
+//! on outlines with four.
+
+use glam::{DVec3, Vec2, Vec3};
+use image::RgbaImage;
+use rolypoly_physics::{BallPlacement, World, WorldConfig};
+use rolypoly_render::{
+    Camera, FrameView, RenderSettings, SHADOW_CROSS, SceneView, Snapshot, shadow_cross_place,
+};
+
+mod common;
+use common::pixel_of;
+
+const SIZE: (u32, u32) = (480, 270);
+
+/// The default room with one ball hanging at `ball` and nothing else.
+fn room_with_ball(ball: Vec3) -> (WorldConfig, SceneView) {
+    let mut config = WorldConfig::default();
+    config.balls.count = 0;
+    config.tumblers.placements.clear();
+    config.balls.placements = vec![BallPlacement::new(ball.as_dvec3(), DVec3::ZERO)];
+    let world = World::new(config.clone(), 1).expect("scene builds");
+    (config, SceneView::from_world(&world, None))
+}
+
+/// Where the ball hangs for seed `seed`.
+fn ball_at(seed: u64) -> Vec3 {
+    Vec3::new(0.5 + 0.3 * seed as f32, 1.2, 0.8 - 0.2 * seed as f32)
+}
+
+fn camera(config: &WorldConfig) -> Camera {
+    Camera::overview(config.room.size.as_vec3())
+}
+
+fn drawn(config: &WorldConfig, scene: &SceneView, view: FrameView, msaa: u32) -> RgbaImage {
+    let settings = RenderSettings {
+        msaa,
+        ..RenderSettings::default()
+    };
+    let mut snap =
+        Snapshot::new(config, settings, SIZE.0, SIZE.1, None).expect("an adapter to draw with");
+    snap.renderer.set_view(view);
+    snap.capture(scene, &camera(config)).expect("frame")
+}
+
+/// The value (0 ..= 1 a channel) a data view wrote at `pixel`.
+fn value(img: &RgbaImage, (x, y): (u32, u32)) -> Vec3 {
+    let p = img.get_pixel(x, y).0;
+    Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32) / 255.0
+}
+
+fn pixel(config: &WorldConfig, p: Vec3) -> (u32, u32) {
+    pixel_of(&camera(config), p, SIZE.0, SIZE.1)
+}
+
+#[test]
+fn normals_decode_to_the_floors_and_each_walls_inward_normal() {
+    for seed in [0, 1] {
+        let (config, scene) = room_with_ball(ball_at(seed));
+        let img = drawn(&config, &scene, FrameView::Normals, 4);
+        let half = config.room.size.as_vec3() * Vec3::new(0.5, 1.0, 0.5);
+        let points = [
+            (Vec3::new(-1.0, 0.0, 1.0), Vec3::Y),
+            (Vec3::new(1.2, 0.0, -1.0), Vec3::Y),
+            (Vec3::new(-half.x, 1.5, 0.0), Vec3::X),
+            (Vec3::new(half.x, 1.5, 0.0), Vec3::NEG_X),
+            (Vec3::new(0.3, 1.0, -half.z), Vec3::Z),
+        ];
+        for (point, normal) in points {
+            let decoded = (value(&img, pixel(&config, point)) * 2.0 - 1.0).normalize();
+            let degrees = decoded.angle_between(normal).to_degrees();
+            assert!(
+                degrees < 2.0,
+                "seed {seed}: at {point} the normal reads {decoded}, {degrees:.2} degrees from {normal}"
+            );
+        }
+    }
+}
+
+#[test]
+fn depth_falls_along_the_floor_away_from_the_camera() {
+    for seed in [0, 1] {
+        let (config, scene) = room_with_ball(ball_at(seed));
+        let img = drawn(&config, &scene, FrameView::Depth, 4);
+        let half_z = 0.5 * config.room.size.z as f32;
+        let x = -1.2 + 0.4 * seed as f32;
+        let greys: Vec<f32> = (0..8)
+            .map(|k| {
+                let z = half_z - 0.3 - k as f32 * (2.0 * half_z - 0.6) / 7.0;
+                value(&img, pixel(&config, Vec3::new(x, 0.0, z))).x
+            })
+            .collect();
+        for pair in greys.windows(2) {
+            assert!(pair[1] < pair[0], "seed {seed}: greys {greys:?}");
+        }
+    }
+}
+
+/// Where the ceiling light's ray through `point` meets the floor.
+fn on_floor_behind(light: Vec3, point: Vec3) -> Vec3 {
+    let t = light.y / (light.y - point.y);
+    light + (point - light) * t
+}
+
+#[test]
+fn the_shadow_reads_nothing_in_a_balls_umbra_and_all_far_from_it() {
+    for seed in [0, 1] {
+        let ball = ball_at(seed);
+        let (config, scene) = room_with_ball(ball);
+        let img = drawn(&config, &scene, FrameView::Shadow, 4);
+        let umbra = on_floor_behind(scene.light.position, ball);
+        let (ux, uy) = pixel(&config, umbra);
+        let (bx, by) = pixel(&config, ball);
+        assert!(
+            Vec2::new(ux as f32 - bx as f32, uy as f32 - by as f32).length() > 30.0,
+            "seed {seed}: the ball hides its own shadow from the camera"
+        );
+        assert!(value(&img, (ux, uy)).x < 0.02, "seed {seed}: umbra lit");
+        let far = Vec3::new(-umbra.x, 0.0, -umbra.z * 0.5);
+        assert!(
+            value(&img, pixel(&config, far)).x > 0.98,
+            "seed {seed}: the open floor is shadowed"
+        );
+    }
+}
+
+/// The mean pixel of the grey (drawn) texels of face `face` of the shadow
+/// cube's cross in `img`, in pixels from the face's top left.
+fn silhouette_centre(img: &RgbaImage, face: usize) -> Vec2 {
+    let (place, side) = shadow_cross_place(SIZE);
+    let (column, row) = SHADOW_CROSS[face];
+    let corner = place + Vec2::new(column as f32, row as f32) * side;
+    let (mut sum, mut count) = (Vec2::ZERO, 0.0);
+    for y in 0..side as u32 {
+        for x in 0..side as u32 {
+            let p = corner + Vec2::new(x as f32, y as f32);
+            // Nothing drawn is the far plane, white; the labels are white in red.
+            if img.get_pixel(p.x as u32, p.y as u32).0[0] < 240 {
+                sum += Vec2::new(x as f32, y as f32);
+                count += 1.0;
+            }
+        }
+    }
+    assert!(count > 0.0, "no silhouette on face {face}");
+    sum / count
+}
+
+#[test]
+fn a_ball_moved_under_the_light_moves_its_silhouette_on_the_down_face_by_its_projection() {
+    const DOWN: usize = 3;
+    for seed in [0, 1] {
+        let first = Vec3::new(0.1 * seed as f32, 1.0, 0.2);
+        let moved = first + Vec3::new(0.4, 0.0, 0.0);
+        let (config, scene) = room_with_ball(first);
+        let before = silhouette_centre(&drawn(&config, &scene, FrameView::ShadowCube, 4), DOWN);
+        let (_, scene) = room_with_ball(moved);
+        let after = silhouette_centre(&drawn(&config, &scene, FrameView::ShadowCube, 4), DOWN);
+        // A 90-degree face: a point d below the light and x across shows
+        // x / d of half the face's side from its centre, +x to the right.
+        let (_, side) = shadow_cross_place(SIZE);
+        let below = scene.light.position.y - first.y;
+        let expected = 0.4 / below * side / 2.0;
+        let shift = after - before;
+        assert!(
+            (shift.x - expected).abs() < 0.15 * expected && shift.y.abs() < 1.0,
+            "seed {seed}: the silhouette moved by {shift}, the projection says ({expected}, 0)"
+        );
+    }
+}
+
+#[test]
+fn motion_is_zero_everywhere_over_a_still_scene_from_a_still_camera() {
+    for seed in [0, 1] {
+        let (config, scene) = room_with_ball(ball_at(seed));
+        let mut snap = Snapshot::new(&config, RenderSettings::default(), SIZE.0, SIZE.1, None)
+            .expect("an adapter to draw with");
+        snap.renderer.set_view(FrameView::Motion);
+        for frame in 0..2 {
+            let img = snap.capture(&scene, &camera(&config)).expect("frame");
+            let moving = img.pixels().filter(|p| p.0[..3] != [0, 0, 0]).count();
+            assert_eq!(moving, 0, "seed {seed}, frame {frame}: pixels moving");
+        }
+    }
+}
+
+#[test]
+fn multisampled_edges_are_none_with_one_sample_and_on_outlines_with_four() {
+    let white = |img: &RgbaImage, (x, y): (u32, u32)| img.get_pixel(x, y).0[0] > 128;
+    for seed in [0, 1] {
+        let ball = ball_at(seed);
+        let (config, scene) = room_with_ball(ball);
+        let single = drawn(&config, &scene, FrameView::MsaaEdges, 1);
+        assert!(
+            single.pixels().all(|p| p.0[..3] == [0, 0, 0]),
+            "seed {seed}"
+        );
+        let four = drawn(&config, &scene, FrameView::MsaaEdges, 4);
+        // Along the ball's outline (a circle about its centre), and nowhere
+        // on the open floor.
+        let (cx, cy) = pixel(&config, ball);
+        let outline = four
+            .enumerate_pixels()
+            .filter(|(x, y, _)| {
+                let d = Vec2::new(*x as f32 - cx as f32, *y as f32 - cy as f32).length();
+                d < 25.0 && white(&four, (*x, *y))
+            })
+            .count();
+        assert!(
+            outline > 10,
+            "seed {seed}: {outline} edge pixels at the ball"
+        );
+        for k in 0..20 {
+            let floor = Vec3::new(-1.5 + 0.15 * k as f32, 0.0, 0.5);
+            assert!(
+                !white(&four, pixel(&config, floor)),
+                "seed {seed}: the open floor at {floor} counts as an edge"
+            );
+        }
+    }
+}
