@@ -20,7 +20,8 @@ struct Views {
 };
 
 @group(0) @binding(0) var<uniform> views: Views;
-@group(0) @binding(1) var shadow_faces: texture_depth_2d_array;
+// Read as plain floats: OpenGL cannot load texels of a depth texture.
+@group(0) @binding(1) var shadow_faces: texture_2d_array<f32>;
 @group(0) @binding(2) var samples: texture_multisampled_2d<f32>;
 @group(0) @binding(3) var history: texture_2d<f32>;
 
@@ -81,7 +82,7 @@ fn fs_shadow_cube(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f
                 return vec4<f32>(1.0, 0.8, 0.1, 1.0);
             }
             let texel = vec2<i32>(inside / side * views.size.w);
-            let depth = textureLoad(shadow_faces, texel, face, 0);
+            let depth = textureLoad(shadow_faces, texel, face, 0).r;
             let grey = clamp(face_distance(depth) / views.place.z, 0.0, 1.0);
             return vec4<f32>(vec3<f32>(grey), 1.0);
         }

@@ -89,7 +89,8 @@ pub const SHADOW_CROSS: [(u32, u32); 6] = [(2, 1), (0, 1), (1, 0), (1, 2), (1, 1
 /// What a caption needs to know of the frame beside the view.
 #[derive(Clone, Copy, Debug)]
 pub struct FrameFacts {
-    /// Samples a pixel (1: no multisampling).
+    /// Samples a pixel that can be read (1: no multisampling, or samples
+    /// the adapter cannot read).
     pub msaa: u32,
     /// Whether the light casts shadows.
     pub shadows: bool,
@@ -272,7 +273,7 @@ impl FrameView {
                 Some("the temporal path is off: there is no history (--temporal turns it on)")
             }
             FrameView::MsaaEdges if facts.msaa <= 1 => {
-                Some("multisampling is off (one sample a pixel): no pixel has samples to disagree")
+                Some("multisampling is off, or its samples cannot be read on this adapter (OpenGL)")
             }
             _ => None,
         }

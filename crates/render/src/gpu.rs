@@ -139,6 +139,13 @@ impl Gpu {
             .contains(wgpu::Features::SHADER_EARLY_DEPTH_TEST)
     }
 
+    /// Whether a multisampled target can also be read sample by sample in
+    /// a shader (the msaa-edges view). Not on OpenGL, where wgpu draws such
+    /// a readable target and its resolve stays empty.
+    pub fn reads_multisampled_targets(&self) -> bool {
+        self.adapter.get_info().backend != wgpu::Backend::Gl
+    }
+
     /// The largest multisample count up to `wanted` that the adapter supports
     /// for the HDR target.
     pub fn msaa_samples(&self, wanted: u32) -> u32 {

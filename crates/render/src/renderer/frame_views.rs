@@ -98,7 +98,7 @@ impl FrameViewsPass {
                 "fs_shadow_cube",
                 texture(
                     1,
-                    wgpu::TextureSampleType::Depth,
+                    wgpu::TextureSampleType::Float { filterable: false },
                     wgpu::TextureViewDimension::D2Array,
                     false,
                 ),

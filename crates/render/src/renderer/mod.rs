@@ -261,6 +261,8 @@ pub struct Renderer {
     view: FrameView,
     /// The pass of the views that no frame target holds.
     frame_views: FrameViewsPass,
+    /// Whether the multisampled surfaces are read sample by sample.
+    read_samples: bool,
 }
 
 /// Where each face's casters lie in the shadow lists.
@@ -308,6 +310,13 @@ impl Renderer {
             ..settings
         };
         let layouts = Layouts::new(device);
+        // The samples a pixel the msaa-edges view reads: none (1) where
+        // multisampled targets cannot be read.
+        let read_samples = if gpu.reads_multisampled_targets() {
+            settings.msaa
+        } else {
+            1
+        };
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("globals"),
             size: std::mem::size_of::<Globals>() as u64,
@@ -381,7 +390,8 @@ impl Renderer {
             timer: None,
             timing: false,
             view: FrameView::Final,
-            frame_views: FrameViewsPass::new(device, shaders, output_format, settings.msaa),
+            frame_views: FrameViewsPass::new(device, shaders, output_format, read_samples),
+            read_samples: read_samples > 1,
         }
     }
 
@@ -401,7 +411,11 @@ impl Renderer {
     /// where a flag or the level turned its pass off.
     pub fn caption(&self, view: &SceneView, camera: &Camera) -> String {
         let facts = crate::frame_view::FrameFacts::new(
-            self.settings.msaa,
+            if self.read_samples {
+                self.settings.msaa
+            } else {
+                1
+            },
             self.settings.shadows,
             self.settings.temporal,
             &view.light,
@@ -736,7 +750,11 @@ impl Renderer {
                 .settings
                 .shadows
                 .then_some(ViewSource::ShadowCube(&self.shadow_cube.array_view)),
-            FrameView::MsaaEdges => targets.geometry_msaa.as_ref().map(ViewSource::Samples),
+            FrameView::MsaaEdges => targets
+                .geometry_msaa
+                .as_ref()
+                .filter(|_| self.read_samples)
+                .map(ViewSource::Samples),
             _ => history.map(|h| ViewSource::History(h.latest())),
         };
         self.frame_views.draw(
@@ -1075,6 +1093,7 @@ impl Renderer {
         let scene_size = (scaled(width), scaled(height));
         let kit = TargetKit {
             samples: self.settings.msaa,
+            read_samples: self.read_samples,
             temporal: self.settings.temporal,
             tonemap_layout: &self.tonemap_layout,
             upscale_layout: &self.upscale_layout,

@@ -72,12 +72,12 @@ impl History {
         }
     }
 
-    /// The output size it was made for.
     /// The history the last frame resolved (alpha: each pixel's weight).
     pub fn latest(&self) -> &wgpu::TextureView {
         &self.views[self.latest]
     }
 
+    /// The output size it was made for.
     pub fn size(&self) -> (u32, u32) {
         self.size
     }

@@ -51,6 +51,9 @@ pub(super) struct Targets {
 /// What the targets are made with besides their size.
 pub(super) struct TargetKit<'a> {
     pub samples: u32,
+    /// Whether the multisampled surfaces are read sample by sample (see
+    /// [`crate::Gpu::reads_multisampled_targets`]).
+    pub read_samples: bool,
     /// Whether the frame takes the temporal path.
     pub temporal: bool,
     pub tonemap_layout: &'a wgpu::BindGroupLayout,
@@ -144,14 +147,18 @@ impl Targets {
             (texture, view)
         });
         // Read sample by sample by the msaa-edges view.
-        let geometry_msaa = (kit.samples > 1).then(|| {
-            texture(
-                "geometry msaa",
-                GEOMETRY_FORMAT,
-                kit.samples,
-                drawn_and_read,
-            )
-        });
+        let geometry_msaa = if kit.read_samples {
+            (kit.samples > 1).then(|| {
+                texture(
+                    "geometry msaa",
+                    GEOMETRY_FORMAT,
+                    kit.samples,
+                    drawn_and_read,
+                )
+            })
+        } else {
+            multisampled("geometry msaa", GEOMETRY_FORMAT)
+        };
         let depth = texture(
             "depth",
             DEPTH_FORMAT,
