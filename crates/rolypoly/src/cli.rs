@@ -64,6 +64,8 @@ impl WindowArgs {
             scene_file: scene_file.map(Path::to_path_buf),
             replay_digest: None,
             replay_from: None,
+            shaders: self.shaders.clone(),
+            view: self.view.unwrap_or(FrameView::Final),
         }
     }
 }
@@ -158,6 +160,19 @@ pub struct WindowArgs {
     /// Mouse-look sensitivity in degrees per pixel (0.01 ..= 5).
     #[arg(long, value_name = "DEG", default_value_t = 0.15, value_parser = parse_look, help_heading = WINDOW_HEADING)]
     pub look_speed: f32,
+
+    /// The view of the frame the window opens on (V and Shift+V change
+    /// it): final, albedo, normals, depth, shadow-cube, ... (`render --view
+    /// list` prints them all).
+    #[arg(long, value_name = "NAME", help_heading = WINDOW_HEADING)]
+    pub view: Option<FrameView>,
+
+    /// Draw the window with the renderer's shaders from this folder
+    /// (`shaders --export DIR` writes them there), watched: a saved file is
+    /// drawn with from the next frame, or its error shown while the last
+    /// good shaders draw on.
+    #[arg(long, value_name = "DIR", help_heading = WINDOW_HEADING)]
+    pub shaders: Option<PathBuf>,
 }
 
 fn parse_bounded(text: &str, lo: f32, hi: f32) -> Result<f32, String> {

@@ -469,3 +469,128 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
 
     quit(&mut s, app);
 }
+
+/// F12's screenshot, once the window says where it wrote it.
+fn shot(s: &mut Session) -> PathBuf {
+    s.xdotool(&["key", "F12"]);
+    let taken = s.expect("a screenshot", |v| v["event"] == "screenshot");
+    PathBuf::from(taken["path"].as_str().expect("path"))
+}
+
+/// The share of a screenshot's pixels that are clearly green.
+fn green_share(path: &std::path::Path) -> f64 {
+    let image = image::open(path)
+        .expect("the screenshot is a PNG")
+        .to_rgba8();
+    let green = image
+        .pixels()
+        .filter(|p| {
+            let [r, g, b, _] = p.0.map(i32::from);
+            g > 100 && g > 2 * r && g > 2 * b
+        })
+        .count();
+    green as f64 / image.pixels().len() as f64
+}
+
+#[test]
+fn a_student_steps_through_the_views_and_edits_a_shader_while_the_window_runs() {
+    let shots = scratch_folder("window-shader-shots");
+    let dir = scratch_folder("window-shaders");
+    let exported = Command::new(env!("CARGO_BIN_EXE_rolypoly"))
+        .args(["shaders", "--export"])
+        .arg(&dir)
+        .output()
+        .expect("rolypoly runs");
+    assert!(exported.status.success(), "{exported:?}");
+    let (mut s, app, _xvfb, _ready, _alone) = open_window(
+        &["--seed", "4", "--shaders", dir.to_str().expect("a path")],
+        &shots,
+    );
+
+    // V shows the next view, Shift+V the previous; each change is named.
+    s.xdotool(&["key", "v"]);
+    let albedo = s.expect("the albedo view", |v| v["event"] == "frame_view");
+    assert_eq!(albedo["view"], "albedo", "{albedo}");
+    s.xdotool(&["key", "v"]);
+    let normals = s.expect("the normals view", |v| v["event"] == "frame_view");
+    assert_eq!(normals["view"], "normals", "{normals}");
+    s.xdotool(&["key", "shift+v", "shift+v"]);
+    s.expect("the albedo view again", |v| {
+        v["event"] == "frame_view" && v["view"] == "albedo"
+    });
+    let last = s.expect("the final frame again", |v| v["event"] == "frame_view");
+    assert_eq!(last["view"], "final", "{last}");
+    let before = green_share(&shot(&mut s));
+    assert!(before < 0.05, "the room is not green: {before}");
+
+    // The lit surfaces' colour made a constant green, saved: the next
+    // frames draw with it.
+    let scene = dir.join("scene.wgsl");
+    let source = std::fs::read_to_string(&scene).expect("the exported scene shader");
+    let lit = "return terms.diffuse + terms.specular + indirect;";
+    assert_eq!(
+        source.matches(lit).count(),
+        1,
+        "Blinn-Phong's sum is where it was"
+    );
+    let saved = Instant::now();
+    std::fs::write(
+        &scene,
+        source.replace(lit, "return vec3<f32>(0.0, 4.0, 0.0);"),
+    )
+    .expect("the edit saved");
+    let reloaded = s.expect("the edit drawn", |v| v["event"] == "shader_reloaded");
+    let fps = s
+        .seen
+        .iter()
+        .rev()
+        .find(|v| v["event"] == "frame_rate")
+        .map_or(f64::NAN, |v| number(v, "fps"));
+    println!(
+        "save to the first frame drawn with it: {:.0} ms as the window measures it, {:.0} ms as this test does (seen {:.0} ms after the save, pipelines built in {:.0} ms; the window at {fps:.1} frames a second)",
+        number(&reloaded, "save_to_picture_ms"),
+        1e3 * saved.elapsed().as_secs_f64(),
+        number(&reloaded, "seen_ms"),
+        number(&reloaded, "build_ms"),
+    );
+    let green = green_share(&shot(&mut s));
+    assert!(
+        green > 0.5,
+        "the lit surfaces are not the edit's green: {green}"
+    );
+
+    // A syntax error: named by file and line, and the window draws on
+    // with the last good shaders.
+    let mut lines: Vec<&str> = source.lines().collect();
+    lines.insert(9, "fn oops( {");
+    std::fs::write(&scene, lines.join("\n")).expect("the mistake saved");
+    let error = s.expect("the shader error", |v| v["event"] == "shader_error");
+    assert!(
+        error["file"]
+            .as_str()
+            .is_some_and(|f| f.ends_with("scene.wgsl")),
+        "{error}"
+    );
+    assert_eq!(error["line"].as_u64(), Some(10), "{error}");
+    assert!(
+        error["error"]
+            .as_str()
+            .is_some_and(|e| e.contains("scene.wgsl:10:")),
+        "{error}"
+    );
+    s.expect("frames drawn after the error", |v| {
+        v["event"] == "frame_rate" && v["fps"].as_f64().is_some_and(|f| f > 0.0)
+    });
+    let still = green_share(&shot(&mut s));
+    assert!(
+        still > 0.5,
+        "the last good shaders stopped drawing: {still}"
+    );
+
+    // Fixed: the error clears and the shipped picture is back.
+    std::fs::write(&scene, &source).expect("the fix saved");
+    s.expect("the fix drawn", |v| v["event"] == "shader_reloaded");
+    let after = green_share(&shot(&mut s));
+    assert!(after < 0.05, "the fix did not take: {after}");
+    quit(&mut s, app);
+}

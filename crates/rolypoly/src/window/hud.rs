@@ -33,6 +33,11 @@ pub struct HudState {
     pub grabbing: bool,
     /// The keys' help shows.
     pub help: bool,
+    /// The caption of the view of the frame shown (V, Shift+V).
+    pub view: String,
+    /// Why the watched folder's shaders are not drawn with (the last good
+    /// ones are), until a save fixes them.
+    pub shader_error: Option<String>,
     /// Simulated seconds per real one, as the player set it.
     pub time_scale: f64,
     /// A line for the player (a refused throw, a saved file), and until
@@ -79,6 +84,8 @@ impl HudState {
             paused: false,
             grabbing: false,
             help: false,
+            view: String::new(),
+            shader_error: None,
             time_scale: 1.0,
             message: None,
             sim_time: 0.0,
@@ -126,7 +133,7 @@ impl HudState {
     }
 }
 
-const KEYS: [(&str, &str); 23] = [
+const KEYS: [(&str, &str); 24] = [
     ("mouse", "look around"),
     ("W A S D", "move"),
     ("F", "fireball on / off"),
@@ -146,6 +153,10 @@ const KEYS: [(&str, &str); 23] = [
         "grab mode: drag a tumbler or a ball with the left button",
     ),
     ("I", "re-initialise the balls"),
+    (
+        "V and Shift+V",
+        "the next, the previous view of the frame: final, albedo, normals, depth, shadow cube, shadow, each light term, bounce, occlusion, bloom, motion, history, multisampled edges",
+    ),
     (
         "O",
         "orbit the body in the middle of the view (move the mouse to turn, wheel to zoom), or fly again",
@@ -277,9 +288,20 @@ impl Hud {
                     {
                         ui.colored_label(egui::Color32::from_rgb(255, 200, 80), message);
                     }
+                    ui.label(format!("view {}", s.view));
                     energy_plot(ui, &s.energy);
                     ui.small("H or F1: keys, Tab: sandbox panel");
                 });
+            if let Some(error) = &s.shader_error {
+                egui::Window::new("Shader error")
+                    .anchor(egui::Align2::LEFT_BOTTOM, [8.0, -8.0])
+                    .resizable(false)
+                    .collapsible(false)
+                    .show(ctx, |ui| {
+                        ui.colored_label(egui::Color32::from_rgb(255, 110, 90), error);
+                        ui.small("the last good shaders draw until the file is saved without it");
+                    });
+            }
             if s.help {
                 egui::Window::new("Keys")
                     .anchor(egui::Align2::RIGHT_TOP, [-8.0 - beside_panel, 8.0])

@@ -12,6 +12,7 @@ mod panel;
 pub mod plots;
 mod profiler;
 mod quality;
+mod shader_watch;
 mod sound;
 
 pub use app::{WindowOptions, run};

@@ -8,7 +8,7 @@
 use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
-use rolypoly_render::{DebugLayer, DebugViews};
+use rolypoly_render::{DebugLayer, DebugViews, FrameView};
 
 use super::plots::Plots;
 use crate::sandbox::{SHIPPED_SCENES, Sandbox, THROW_SPEEDS, TIME_SCALES};
@@ -70,6 +70,8 @@ pub struct Panel {
     pub message: Option<String>,
     /// The debug views shown (keys 1 to 6).
     pub debug: DebugViews,
+    /// The view of the frame shown (V and Shift+V).
+    pub view: FrameView,
     pub tab: Tab,
 }
 
@@ -85,6 +87,7 @@ impl Panel {
             save_path: "my-scene.toml".into(),
             message: None,
             debug: DebugViews::default(),
+            view: FrameView::Final,
             tab: Tab::default(),
         }
     }
@@ -230,6 +233,15 @@ impl Panel {
                 .logarithmic(true)
                 .text("impulse scale (1: a ball's weight is its radius)"),
         );
+
+        ui.separator();
+        ui.strong("Inside the frame (V, Shift+V)");
+        ui.horizontal_wrapped(|ui| {
+            for view in FrameView::ALL {
+                ui.selectable_value(&mut self.view, view, view.name())
+                    .on_hover_text(view.about());
+            }
+        });
 
         ui.separator();
         ui.strong("Throwing (B)");

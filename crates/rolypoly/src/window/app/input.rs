@@ -34,6 +34,8 @@ pub(super) struct Keys {
     pub back: bool,
     pub left: bool,
     pub right: bool,
+    /// Either Shift is down: V then shows the previous view.
+    pub shift: [bool; 2],
 }
 
 impl App {
@@ -95,7 +97,9 @@ impl App {
             KeyCode::KeyS => self.keys.back = down,
             KeyCode::KeyA => self.keys.left = down,
             KeyCode::KeyD => self.keys.right = down,
+            KeyCode::ShiftRight => self.keys.shift[1] = down,
             KeyCode::ShiftLeft => {
+                self.keys.shift[0] = down;
                 let frozen = self.sandbox.playback.frozen();
                 self.sandbox.playback.set_held(down);
                 if self.sandbox.playback.frozen() != frozen {
@@ -182,6 +186,16 @@ impl App {
                 self.log.say("grab_mode", json!({ "on": next == MouseMode::Grab, "tumblers_on_screen": self.tumblers_on_screen() }));
             }
             KeyCode::KeyI => self.restart(),
+            // The frame's views in turn; the frame shows the new one.
+            KeyCode::KeyV => {
+                let view = self.panel.view;
+                self.panel.view = if self.keys.shift.contains(&true) {
+                    view.previous()
+                } else {
+                    view.next()
+                };
+                self.tell_view();
+            }
             KeyCode::KeyO => self.toggle_orbit(),
             KeyCode::F4 => {
                 self.plots.open = !self.plots.open;

@@ -13,8 +13,9 @@ use std::time::{Duration, Instant};
 use anyhow::Context as _;
 use glam::{Vec2, Vec3};
 use rolypoly_physics::SphereSpec;
+use rolypoly_render::shaders::{ShaderError, ShaderSet};
 use rolypoly_render::{
-    AUTO_TARGET_FPS, Camera, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, Quality,
+    AUTO_TARGET_FPS, Camera, FrameView, Gpu, MeshData, OFFSCREEN_FORMAT, OffscreenTarget, Quality,
     QualityChoice, RenderSettings, Renderer,
 };
 use serde_json::json;
@@ -33,6 +34,7 @@ use super::panel::Panel;
 use super::plots::Plots;
 use super::profiler::{FrameProfile, Profiler};
 use super::quality::{QualityChange, WindowQuality};
+use super::shader_watch::ShaderWatch;
 use super::sound::LiveSound;
 use crate::sandbox::{MAX_CATCH_UP, Sandbox};
 use input::{Keys, MouseMode};
@@ -77,6 +79,11 @@ pub struct WindowOptions {
     /// In replays, the tick to play up to as soon as the window's device
     /// is known: a recording on the GPU engine runs there from its start.
     pub replay_from: Option<u64>,
+    /// The folder of shaders to draw with, watched while the window is
+    /// open; None: the shipped ones.
+    pub shaders: Option<PathBuf>,
+    /// The view of the frame shown first (V and Shift+V change it).
+    pub view: FrameView,
 }
 
 /// Opens the window on `sandbox` and runs until it is closed.
@@ -153,6 +160,16 @@ struct App {
     tumbler_mesh: MeshData,
     coarse_tumbler: MeshData,
     paint: image::RgbaImage,
+    /// The shaders drawn with: the shipped ones, or the last good set of
+    /// the folder watched.
+    shaders: ShaderSet,
+    shader_watch: Option<ShaderWatch>,
+    /// A reload's first frame, not yet presented: when the file was saved,
+    /// how long after it the window read it, and how long the pipelines
+    /// took to build.
+    reload_shown: Option<(Instant, Duration, Duration)>,
+    /// The view of the frame the log last named.
+    view_told: FrameView,
     panel: Panel,
     quality: WindowQuality,
     /// The room's sound, played live.
@@ -200,6 +217,14 @@ impl App {
         let tumbler_spheres = world.config().tumblers.spheres.clone();
         let (tumbler_mesh, coarse_tumbler, paint) = tumbler_look(&tumbler_spheres)?;
         let camera = FlyCamera::from_camera(&Camera::overview(room));
+        // A folder that cannot be drawn with is the one error the window
+        // opens with instead.
+        let (shaders, shader_watch) = match &options.shaders {
+            Some(dir) => (ShaderSet::load(dir)?, Some(ShaderWatch::new(dir)?)),
+            None => (ShaderSet::shipped(), None),
+        };
+        let mut panel = Panel::new(options.scene_file.clone());
+        panel.view = options.view;
         Ok(App {
             log: EventLog::new(options.log_events),
             camera,
@@ -207,7 +232,11 @@ impl App {
             camera_reported: camera,
             camera_recorded: camera,
             hud_state: HudState::new(options.seed, world.balls().len()),
-            panel: Panel::new(options.scene_file.clone()),
+            panel,
+            shaders,
+            shader_watch,
+            reload_shown: None,
+            view_told: options.view,
             quality: WindowQuality::new(
                 sandbox.scene().quality,
                 chosen_fps(sandbox.scene().target_fps).unwrap_or(AUTO_TARGET_FPS),
@@ -287,6 +316,7 @@ impl App {
         // the fixed steps decide how much of it the world catches up on.
         let elapsed = self.last_frame.map_or(0.0, |t| (now - t).as_secs_f64());
         self.last_frame = Some(now);
+        self.follow_shaders();
         // After a stall the camera, like the world, does not leap ahead.
         self.walk(elapsed.min(MAX_CATCH_UP) as f32);
         self.follow_orbit(elapsed.min(MAX_CATCH_UP) as f32);
@@ -336,9 +366,13 @@ impl App {
         self.hud_state.rewound =
             furthest.saturating_sub(self.sandbox.ticks()) as f64 * sim.world.config().solver.dt;
         let cursor = (self.mode == MouseMode::Grab).then_some(self.cursor);
+        // The view the keys or the panel chose.
+        self.tell_view();
         let Some(r) = self.running.as_mut() else {
             return;
         };
+        r.renderer.set_view(self.panel.view);
+        self.hud_state.view = r.renderer.caption(&view, &camera);
         if r.config.width == 0 || r.config.height == 0 {
             return;
         }
@@ -404,6 +438,18 @@ impl App {
             .push_back((r.frames_submitted, painted.submitted));
         let presenting = Instant::now();
         r.gpu.queue.present(texture);
+        if let Some((saved_at, seen, build)) = self.reload_shown.take() {
+            // The first frame drawn with a saved shader is on screen.
+            self.log.say(
+                "shader_reloaded",
+                json!({
+                    "dir": self.shader_watch.as_ref().map(|w| w.dir().display().to_string()),
+                    "save_to_picture_ms": 1e3 * saved_at.elapsed().as_secs_f64(),
+                    "seen_ms": 1e3 * seen.as_secs_f64(),
+                    "build_ms": 1e3 * build.as_secs_f64(),
+                }),
+            );
+        }
         let gpu_wait = acquire + stats.submit + painted.submit + presenting.elapsed();
         let parts = FrameParts {
             simulation: self.last_simulation.as_secs_f64(),
@@ -538,9 +584,98 @@ impl App {
         settings: RenderSettings,
         format: wgpu::TextureFormat,
     ) -> Renderer {
-        let mut renderer = Renderer::new(gpu, settings, format, &self.tumbler_mesh, &self.paint);
+        let mut renderer = Renderer::with_shaders(
+            gpu,
+            settings,
+            format,
+            &self.tumbler_mesh,
+            &self.paint,
+            &self.shaders,
+        );
         renderer.set_coarse_tumbler(gpu, &self.coarse_tumbler);
+        renderer.set_view(self.panel.view);
         renderer
+    }
+
+    /// Names the view of the frame chosen in the log, once a change: each
+    /// press of V is told, even where two come between frames.
+    fn tell_view(&mut self) {
+        let view = self.panel.view;
+        if view != self.view_told {
+            self.view_told = view;
+            self.log.say(
+                "frame_view",
+                json!({ "view": view.name(), "about": view.about() }),
+            );
+        }
+    }
+
+    /// Draws with the watched folder's shaders from the next frame where a
+    /// file was saved and the set is good; where it is not, keeps the last
+    /// good ones and says why on screen and in the log.
+    fn follow_shaders(&mut self) {
+        let Some(reload) = self.shader_watch.as_mut().and_then(ShaderWatch::poll) else {
+            return;
+        };
+        let shaders = match reload.shaders {
+            Ok(shaders) => shaders,
+            Err(error) => return self.shader_failed(&error),
+        };
+        let Some(r) = self.running.take() else {
+            self.shaders = shaders;
+            return;
+        };
+        let building = Instant::now();
+        let last_good = std::mem::replace(&mut self.shaders, shaders);
+        // What naga lets through and the pipelines' layouts refuse (a
+        // binding removed, an entry point renamed) is caught here too.
+        let scope = r.gpu.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let renderer = self.renderer(&r.gpu, r.renderer.settings(), r.renderer.output_format());
+        let refused = pollster::block_on(scope.pop());
+        match refused {
+            None => {
+                self.running = Some(Running { renderer, ..r });
+                self.reload_shown = Some((
+                    reload.saved_at,
+                    building - reload.saved_at,
+                    building.elapsed(),
+                ));
+                self.hud_state.shader_error = None;
+            }
+            Some(error) => {
+                self.shaders = last_good;
+                self.running = Some(r);
+                let dir = self.shader_watch.as_ref().map(|w| w.dir().to_path_buf());
+                self.shader_error_said(
+                    format!(
+                        "{}: the pipelines refuse the shaders: {error}",
+                        dir.unwrap_or_default().display()
+                    ),
+                    json!({}),
+                );
+            }
+        }
+    }
+
+    /// A watched folder's shaders that cannot be drawn with.
+    fn shader_failed(&mut self, error: &ShaderError) {
+        let place = match error {
+            ShaderError::Invalid {
+                path, line, column, ..
+            } => json!({ "file": path.display().to_string(), "line": line, "column": column }),
+            ShaderError::Unreadable { path, .. } => json!({ "file": path.display().to_string() }),
+            ShaderError::NoFolder { dir } => json!({ "file": dir.display().to_string() }),
+        };
+        self.shader_error_said(error.to_string(), place);
+    }
+
+    fn shader_error_said(&mut self, message: String, place: serde_json::Value) {
+        let mut fields = json!({ "error": message });
+        if let (Some(fields), serde_json::Value::Object(place)) = (fields.as_object_mut(), place) {
+            fields.extend(place);
+        }
+        self.log.say("shader_error", fields);
+        self.hud_state.shader_error = Some(message);
     }
 
     /// The frames a second auto holds now: the scene's, or the default of
@@ -602,13 +737,15 @@ impl App {
             msaa: self.options.msaa.unwrap_or(high.msaa),
             ..high
         };
-        let mut renderer = Renderer::new(
+        let mut renderer = Renderer::with_shaders(
             &r.gpu,
             settings,
             OFFSCREEN_FORMAT,
             &self.tumbler_mesh,
             &self.paint,
+            &self.shaders,
         );
+        renderer.set_view(self.panel.view);
         let target = OffscreenTarget::new(&r.gpu, w, h)?;
         let view = self.sandbox.sim.view(&self.sandbox.scene().light);
         target.render(&r.gpu, &mut renderer, &view, &self.camera.camera())?;
