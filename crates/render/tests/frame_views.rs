@@ -5,13 +5,15 @@
 //! a ball's umbra and 1 far from it; the shadow cube's -Y face moves a
 //! ball's silhouette by where the light projects it; motion is zero over a
 //! still scene; the multisampled edges are empty with one sample and lie
-//! on outlines with four.
+//! on outlines with four; the ambient, diffuse and specular views add up
+//! to the lit frame; a panning camera's floor moves as the camera does.
 
 use glam::{DVec3, Vec2, Vec3};
 use image::RgbaImage;
 use rolypoly_physics::{BallPlacement, World, WorldConfig};
 use rolypoly_render::{
-    Camera, FrameView, RenderSettings, SHADOW_CROSS, SceneView, Snapshot, shadow_cross_place,
+    Camera, FrameView, MOTION_FULL_PIXELS, RenderSettings, SHADOW_CROSS, SceneView, Snapshot,
+    shadow_cross_place,
 };
 
 mod common;
@@ -185,6 +187,158 @@ fn motion_is_zero_everywhere_over_a_still_scene_from_a_still_camera() {
             let img = snap.capture(&scene, &camera(&config)).expect("frame");
             let moving = img.pixels().filter(|p| p.0[..3] != [0, 0, 0]).count();
             assert_eq!(moving, 0, "seed {seed}, frame {frame}: pixels moving");
+        }
+    }
+}
+
+/// Narkowicz's ACES curve (tonemap.wgsl's `aces`) and its inverse, and
+/// sRGB's encoding and decoding of 8 bits: the term views are drawn in
+/// the frame's own tone mapping, so their linear light is read back
+/// through them.
+const ACES: (f32, f32, f32, f32, f32) = (2.51, 0.03, 2.43, 0.59, 0.14);
+
+fn aces(x: f32) -> f32 {
+    let (a, b, c, d, e) = ACES;
+    ((x * (a * x + b)) / (x * (c * x + d) + e)).clamp(0.0, 1.0)
+}
+
+/// The light `x` whose curve is `y` (y below 1): the positive root of
+/// (a - c y) x^2 + (b - d y) x - e y = 0.
+fn aces_inverse(y: f32) -> f32 {
+    let (a, b, c, d, e) = ACES;
+    let (qa, qb, qc) = (a - c * y, b - d * y, -e * y);
+    (-qb + (qb * qb - 4.0 * qa * qc).sqrt()) / (2.0 * qa)
+}
+
+fn srgb_decode(v: u8) -> f32 {
+    let v = v as f32 / 255.0;
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn srgb_encode(c: f32) -> f32 {
+    let s = if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    };
+    (s * 255.0).clamp(0.0, 255.0)
+}
+
+#[test]
+fn ambient_diffuse_and_specular_add_up_to_the_lit_frame() {
+    for seed in [2, 7] {
+        let config = WorldConfig::default();
+        let mut world = World::new(config.clone(), seed).expect("scene builds");
+        for _ in 0..30 {
+            world.step();
+        }
+        let mut scene = SceneView::from_world(&world, None);
+        // Only Blinn-Phong's three terms light the frame.
+        scene.light.bloom = None;
+        scene.light.indirect = false;
+        scene.light.occlusion = false;
+        let frames: Vec<RgbaImage> = [
+            FrameView::Final,
+            FrameView::Ambient,
+            FrameView::Diffuse,
+            FrameView::Specular,
+        ]
+        .into_iter()
+        .map(|view| drawn(&config, &scene, view, 4))
+        .collect();
+        let (mut error, mut counted, mut lit) = (0.0f64, 0usize, 0usize);
+        for (i, frame_pixel) in frames[0].pixels().enumerate() {
+            let frame = frame_pixel.0;
+            // A saturated channel (the bulb, which is no term of the light)
+            // cannot be read back through the curve.
+            if frame[..3].contains(&255) {
+                continue;
+            }
+            for channel in 0..3 {
+                let light: f32 = frames[1..]
+                    .iter()
+                    .map(|term| {
+                        let p = term.as_raw()[4 * i + channel];
+                        aces_inverse(srgb_decode(p))
+                    })
+                    .sum();
+                let summed = srgb_encode(aces(light));
+                error += (summed - frame[channel] as f32).abs() as f64;
+            }
+            counted += 1;
+            lit += usize::from(frame[..3].iter().any(|&c| c > 20));
+        }
+        let mean = error / (3 * counted) as f64;
+        println!("seed {seed}: the terms' sum is off the frame by {mean:.3} of 255 on average");
+        assert!(
+            counted > frames[0].pixels().len() * 9 / 10 && lit > counted / 2,
+            "seed {seed}: too few pixels to compare ({counted}, {lit} lit)"
+        );
+        assert!(
+            mean < 1.0,
+            "seed {seed}: the terms' sum is off by {mean:.3} of 255 on average"
+        );
+    }
+}
+
+/// Where a world point appears in a frame of [`SIZE`], in pixels from the
+/// top left, unrounded.
+fn screen_point(camera: &Camera, p: Vec3) -> Vec2 {
+    let clip = camera.view_projection(SIZE.0 as f32 / SIZE.1 as f32) * p.extend(1.0);
+    let ndc = clip.truncate() / clip.w;
+    Vec2::new(
+        (ndc.x * 0.5 + 0.5) * SIZE.0 as f32,
+        (0.5 - ndc.y * 0.5) * SIZE.1 as f32,
+    )
+}
+
+/// The motion view's vector at a pixel, in pixels: its colour is a hue
+/// (three cosines a third of a turn apart, scene.wgsl's `motion_color`)
+/// times the length over [`MOTION_FULL_PIXELS`], and the hue's three
+/// components summed along their own directions are 3/4 of the unit
+/// vector of the motion.
+fn motion_at(img: &RgbaImage, pixel: (u32, u32)) -> Vec2 {
+    let c = value(img, pixel);
+    let third = std::f32::consts::TAU / 3.0;
+    let along = |k: f32| Vec2::new((k * third).cos(), (k * third).sin());
+    (c.x * along(0.0) + c.y * along(1.0) + c.z * along(-1.0)) * MOTION_FULL_PIXELS / 0.75
+}
+
+#[test]
+fn a_panning_cameras_floor_moves_on_screen_as_the_camera_does() {
+    for seed in [0, 1] {
+        let (config, scene) = room_with_ball(ball_at(seed));
+        let mut snap = Snapshot::new(&config, RenderSettings::default(), SIZE.0, SIZE.1, None)
+            .expect("an adapter to draw with");
+        snap.renderer.set_view(FrameView::Motion);
+        let before = camera(&config);
+        // A turn to the side and a step along, a few pixels' worth.
+        let step = Vec3::new(0.03 + 0.01 * seed as f32, 0.0, 0.02);
+        let after = Camera {
+            eye: before.eye + step,
+            target: before.target + step + Vec3::new(0.03, 0.0, 0.0),
+            ..before
+        };
+        snap.capture(&scene, &before).expect("frame");
+        let img = snap.capture(&scene, &after).expect("frame");
+        for k in 0..12 {
+            let point = Vec3::new(-1.6 + 0.3 * k as f32, 0.0, 0.6 - 0.1 * k as f32);
+            // The motion view writes where each point was the frame before,
+            // from where it is now.
+            let expected = screen_point(&before, point) - screen_point(&after, point);
+            assert!(
+                expected.length() > 2.0,
+                "seed {seed}: the pan is too small to see"
+            );
+            let read = motion_at(&img, pixel(&config, point));
+            assert!(
+                (read - expected).length() < 1.0,
+                "seed {seed}: at {point} the floor moved {read} pixels, the cameras say {expected}"
+            );
         }
     }
 }
