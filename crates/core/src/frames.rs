@@ -140,26 +140,33 @@ impl Frames {
     }
 
     /// The frame of `sim` at the moment `steps` steps from its start, which
-    /// it is run to: on the temporal path, drawn after the frames of the
+    /// it is run to, drawn after the frames before it that it reads: on the
+    /// temporal path those of the
     /// [`HISTORY_FRAMES`](rolypoly_render::HISTORY_FRAMES) moments before
     /// it, [`HISTORY_FPS`] a second apart (or from the start, where the
     /// moment comes sooner: frames of the first moment, the jitter moving),
-    /// so that the picture holds its history.
+    /// so that the picture holds its history; in the motion view the one
+    /// moment a frame before, so that it shows what moved since.
     pub fn draw_at(
         &mut self,
         sim: &mut Simulation,
         steps: u64,
         light: &LightConfig,
     ) -> anyhow::Result<image::RgbaImage> {
-        if self.temporal() {
-            let apart = crate::steps_for(1.0 / HISTORY_FPS, sim.world.config().solver.dt).max(1);
-            let camera = self.camera;
-            for k in (1..=rolypoly_render::HISTORY_FRAMES).rev() {
-                let at = steps.saturating_sub(u64::from(k) * apart);
-                sim.ticks(at.saturating_sub(sim.world.step_count()));
-                sim.check_gpu()?;
-                self.render(sim, light, &camera)?;
-            }
+        let before = if self.temporal() {
+            rolypoly_render::HISTORY_FRAMES
+        } else if self.snapshot.renderer.view() == FrameView::Motion {
+            1
+        } else {
+            0
+        };
+        let apart = crate::steps_for(1.0 / HISTORY_FPS, sim.world.config().solver.dt).max(1);
+        let camera = self.camera;
+        for k in (1..=before).rev() {
+            let at = steps.saturating_sub(u64::from(k) * apart);
+            sim.ticks(at.saturating_sub(sim.world.step_count()));
+            sim.check_gpu()?;
+            self.render(sim, light, &camera)?;
         }
         sim.ticks(steps.saturating_sub(sim.world.step_count()));
         sim.check_gpu()?;

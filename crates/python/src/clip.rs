@@ -22,10 +22,10 @@ const MAX_SECONDS: f64 = 3600.0;
 /// does: ``.gif`` an animated GIF, ``.mp4`` an H.264 video (through the
 /// program ffmpeg), a name ending in ``/`` (or without an extension) a
 /// folder of numbered PNGs. Frame k shows the world ``k / fps`` seconds
-/// from now. ``size``, ``camera``, ``quality`` and ``show`` are
+/// from now. ``size``, ``camera``, ``quality``, ``show`` and ``view`` are
 /// :func:`render`'s. Returns the number of frames written.
 #[pyfunction]
-#[pyo3(signature = (world, path, seconds=3.0, fps=30, size=(640, 360), camera=None, quality=None, show=None))]
+#[pyo3(signature = (world, path, seconds=3.0, fps=30, size=(640, 360), camera=None, quality=None, show=None, view=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn record(
     py: Python<'_>,
@@ -37,6 +37,7 @@ pub fn record(
     camera: Option<&Bound<'_, PyAny>>,
     quality: Option<&str>,
     show: Option<&Bound<'_, PyAny>>,
+    view: Option<&str>,
 ) -> PyResult<u32> {
     if !(seconds > 0.0 && seconds <= MAX_SECONDS) {
         return Err(value_error(format!(
@@ -48,7 +49,7 @@ pub fn record(
         .filter(|f| (1..=60).contains(f))
         .ok_or_else(|| value_error(format!("fps = {fps} is out of range: allowed 1 ..= 60")))?;
     ClipKind::of(&path).map_err(|e| value_error(format!("{e:#}")))?;
-    let options = FrameOptions::read(size, camera, quality, show)?;
+    let options = FrameOptions::read(size, camera, quality, show, view)?;
     let mut world = world.try_borrow_mut()?;
     let run = &mut world.run;
     let count = frame_count(seconds, fps);

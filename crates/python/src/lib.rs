@@ -35,6 +35,7 @@ fn _rolypoly(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<events::Event>()?;
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(render::overview_camera, m)?)?;
+    m.add_function(wrap_pyfunction!(render::frame_views, m)?)?;
     m.add_function(wrap_pyfunction!(clip::record, m)?)?;
     m.add_function(wrap_pyfunction!(sound::sound, m)?)?;
     m.add_function(wrap_pyfunction!(measures::angle_of_repose, m)?)?;

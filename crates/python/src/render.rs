@@ -11,7 +11,7 @@ use rolypoly_core::frames::FrameOptions as Drawing;
 use rolypoly_core::frames::Frames;
 use rolypoly_core::simulation::Simulation;
 use rolypoly_physics::WorldConfig;
-use rolypoly_render::{Camera, DebugViews, LightConfig, QualityChoice};
+use rolypoly_render::{Camera, DebugViews, FrameView, LightConfig, QualityChoice};
 
 use crate::errors::{device_error, gpu_error, value_error};
 use crate::run::Run;
@@ -28,6 +28,7 @@ struct Made {
     quality: Option<QualityChoice>,
     size: (u32, u32),
     show: DebugViews,
+    view: FrameView,
 }
 
 /// The last renderer made: opening the adapter and building the pipelines
@@ -44,12 +45,17 @@ static FRAMES: Mutex<Option<(Made, Frames)>> = Mutex::new(None);
 /// ``quality`` is "high", "medium", "low" or "auto" (drawn as high), None
 /// for the scene's ``render.quality``. ``show`` names debug views drawn
 /// over the frame: some of "contacts", "impulses", "velocities", "grid",
-/// "rest", "com" (a list, or one comma-separated string).
+/// "rest", "com" (a list, or one comma-separated string). ``view`` names
+/// the view of the frame's passes drawn instead of the finished frame, as
+/// ``rolypoly render --view``: "final" (None), "albedo", "normals",
+/// "depth", "shadow-cube", "shadow", "ambient", "diffuse", "specular",
+/// "bounce", "occlusion", "bloom", "motion", "history" or "msaa-edges"
+/// (:func:`frame_views` lists them with what each shows).
 ///
 /// Without a usable graphics adapter it raises ``rolypoly.DeviceError``;
 /// Mesa's lavapipe draws on machines without a GPU.
 #[pyfunction]
-#[pyo3(signature = (world, size=(640, 360), camera=None, quality=None, show=None))]
+#[pyo3(signature = (world, size=(640, 360), camera=None, quality=None, show=None, view=None))]
 pub fn render<'py>(
     py: Python<'py>,
     world: &Bound<'py, World>,
@@ -57,8 +63,9 @@ pub fn render<'py>(
     camera: Option<&Bound<'py, PyAny>>,
     quality: Option<&str>,
     show: Option<&Bound<'py, PyAny>>,
+    view: Option<&str>,
 ) -> PyResult<Bound<'py, PyArray3<u8>>> {
-    let options = FrameOptions::read(size, camera, quality, show)?;
+    let options = FrameOptions::read(size, camera, quality, show, view)?;
     let world = world.try_borrow()?;
     let run = &world.run;
     let held = held_balls(run)?;
@@ -79,7 +86,7 @@ pub fn render<'py>(
 /// there is no graphics adapter to draw with, so that the notebook shows
 /// the world's text instead.
 pub fn png(py: Python<'_>, world: &Bound<'_, World>) -> PyResult<Option<Vec<u8>>> {
-    let options = FrameOptions::read((640, 360), None, None, None)?;
+    let options = FrameOptions::read((640, 360), None, None, None, None)?;
     let world = world.try_borrow()?;
     let run = &world.run;
     let held = held_balls(run)?;
@@ -106,6 +113,7 @@ pub struct FrameOptions {
     pub size: (u32, u32),
     quality: Option<QualityChoice>,
     show: DebugViews,
+    view: FrameView,
     eye_target: Option<(Vec3, Vec3)>,
 }
 
@@ -116,7 +124,15 @@ impl FrameOptions {
         camera: Option<&Bound<'_, PyAny>>,
         quality: Option<&str>,
         show: Option<&Bound<'_, PyAny>>,
+        view: Option<&str>,
     ) -> PyResult<FrameOptions> {
+        let view = view
+            .map(|name| {
+                name.parse::<FrameView>()
+                    .map_err(|e| value_error(format!("view: {e}")))
+            })
+            .transpose()?
+            .unwrap_or_default();
         let quality = quality
             .map(|name| {
                 QualityChoice::from_name(name).ok_or_else(|| {
@@ -131,6 +147,7 @@ impl FrameOptions {
             size: frame_size(size)?,
             quality,
             show: debug_views(show)?,
+            view,
             eye_target: camera.map(read_camera).transpose()?,
         })
     }
@@ -162,12 +179,13 @@ pub fn with_frames<T>(
         quality: options.quality,
         size: options.size,
         show: options.show,
+        view: options.view,
     };
     let mut cache = FRAMES.lock().unwrap_or_else(PoisonError::into_inner);
     if cache.as_ref().is_none_or(|(was, _)| *was != made) {
         // The old renderer goes first: two may not fit the adapter.
         *cache = None;
-        let args = frame_args(options.quality, options.show);
+        let args = frame_args(options.quality, options.show, options.view);
         let frames = Frames::new(&made.config, made.scene_quality, &args, options.size)?;
         *cache = Some((made, frames));
     }
@@ -186,6 +204,17 @@ pub fn with_frames<T>(
     draw(frames, &run.scene.data.light, &camera)
 }
 
+/// Every view of the frame's passes ``render``'s ``view`` takes, as
+/// ``(name, what it shows)`` pairs in the order the window's V steps
+/// through them.
+#[pyfunction]
+pub fn frame_views() -> Vec<(&'static str, &'static str)> {
+    FrameView::ALL
+        .iter()
+        .map(|v| (v.name(), v.about()))
+        .collect()
+}
+
 /// The camera ``render`` uses when given none: the program's overview of
 /// ``world``'s room, from outside its front wall. Returns ``(eye, target)``.
 #[pyfunction]
@@ -200,10 +229,11 @@ pub fn overview_camera(world: &Bound<'_, World>) -> PyResult<(Point, Point)> {
 type Point = (f64, f64, f64);
 
 /// The options of `rolypoly render` that these frames differ by.
-fn frame_args(quality: Option<QualityChoice>, show: DebugViews) -> Drawing {
+fn frame_args(quality: Option<QualityChoice>, show: DebugViews, view: FrameView) -> Drawing {
     Drawing {
         quality,
         show: Some(show),
+        view: Some(view),
         ..Drawing::default()
     }
 }

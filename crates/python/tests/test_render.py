@@ -36,6 +36,9 @@ CASES = [
     # The impacts of the last step marked, as the program marks them.
     (None, {"balls.count": 300}, ["--balls", "300"], 6, 1.0, (200, 112),
      {"show": "contacts,impulses"}, ["--show", "contacts,impulses"]),
+    # A view of one of the frame's passes, as the program draws it.
+    (None, None, [], 3, 0.5, (160, 90), {"view": "normals"}, ["--view", "normals"]),
+    (None, None, [], 4, 0.5, (160, 90), {"view": "specular"}, ["--view", "specular"]),
 ]
 
 
@@ -94,6 +97,21 @@ def test_the_overview_camera_is_the_default():
                           rolypoly.render(world, size=(64, 36), camera=(eye, target)))
 
 
+def test_the_frame_views_are_listed_and_each_draws_another_picture():
+    views = rolypoly.frame_views()
+    names = [name for name, _ in views]
+    assert names[0] == "final" and {"normals", "shadow-cube", "msaa-edges"} <= set(names)
+    assert all(about for _, about in views)
+    world = rolypoly.World(seed=1)
+    world.step(world.steps_for(0.3))
+    final = rolypoly.render(world, size=(96, 54))
+    assert np.array_equal(final, rolypoly.render(world, size=(96, 54), view="final"))
+    # The floor's normal is +y: the normals view's floor is (128, 255, 128).
+    normals = rolypoly.render(world, size=(96, 54), view="normals").astype(int)
+    assert abs(normals[50, 48, :3] - [128, 255, 128]).max() <= 3, normals[50, 48]
+    assert not np.array_equal(final, normals)
+
+
 @pytest.mark.parametrize("options, needle", [
     ({"size": (0, 10)}, "size = (0, 10) is out of range"),
     ({"size": (9000, 10)}, "each side 1 ..= 8192"),
@@ -101,6 +119,7 @@ def test_the_overview_camera_is_the_default():
     ({"show": ["nope"]}, "`nope` is not a debug view"),
     ({"show": 3}, "show: give a list"),
     ({"camera": (1, 2, 3)}, "camera: give (eye, target)"),
+    ({"view": "nosuch"}, "no frame view is called 'nosuch'; the views are: final, albedo"),
     ({"camera": ((0, 1, 5), (0, 1, 5))}, "the same point"),
     ({"camera": ((0, float("nan"), 5), (0, 1, 0))}, "must be finite"),
 ])

@@ -354,7 +354,23 @@ fn multisampled_edges_are_none_with_one_sample_and_on_outlines_with_four() {
             single.pixels().all(|p| p.0[..3] == [0, 0, 0]),
             "seed {seed}"
         );
-        let four = drawn(&config, &scene, FrameView::MsaaEdges, 4);
+        let settings = RenderSettings {
+            msaa: 4,
+            ..RenderSettings::default()
+        };
+        let mut snap = Snapshot::new(&config, settings, SIZE.0, SIZE.1, None)
+            .expect("an adapter to draw with");
+        snap.renderer.set_view(FrameView::MsaaEdges);
+        let four = snap.capture(&scene, &camera(&config)).expect("frame");
+        let caption = snap.renderer.caption(&scene, &camera(&config));
+        let backend = snap.gpu.adapter.get_info().backend;
+        if backend == wgpu::Backend::Gl && caption.contains("empty here") {
+            // An adapter whose multisamples cannot be read (OpenGL) says
+            // so, and shows no edge rather than wrong ones.
+            println!("seed {seed}: {caption}");
+            assert!(four.pixels().all(|p| p.0[..3] == [0, 0, 0]), "seed {seed}");
+            continue;
+        }
         // Along the ball's outline (a circle about its centre), and nowhere
         // on the open floor.
         let (cx, cy) = pixel(&config, ball);

@@ -1411,3 +1411,85 @@ fn render_reference_refuses_what_it_cannot_do() {
     );
     assert!(!out.exists() && !scratch("never-ref-flip.png").exists());
 }
+
+#[test]
+fn frame_views_are_listed_and_an_unknown_one_is_refused_with_their_names() {
+    let listed = rolypoly(&["render", "--view", "list"]);
+    assert!(listed.status.success(), "{}", stderr(&listed));
+    let text = stdout(&listed);
+    for name in [
+        "final",
+        "albedo",
+        "normals",
+        "depth",
+        "shadow-cube",
+        "shadow",
+        "ambient",
+        "diffuse",
+        "specular",
+        "bounce",
+        "occlusion",
+        "bloom",
+        "motion",
+        "history",
+        "msaa-edges",
+    ] {
+        assert!(
+            text.lines()
+                .any(|l| l.split_whitespace().next() == Some(name)),
+            "{name} not listed:\n{text}"
+        );
+    }
+    // From render, record and the window alike, before anything is drawn
+    // or a display is looked for.
+    for args in [
+        vec!["render", "--view", "nosuch", "--out", "never.png"],
+        vec!["record", "--view", "nosuch", "--out", "never.gif"],
+        vec!["--view", "nosuch"],
+    ] {
+        let err = assert_clean_failure(&rolypoly_without_display(&args));
+        assert!(
+            err.contains("nosuch") && err.contains("shadow-cube") && err.contains("msaa-edges"),
+            "{args:?}: {err}"
+        );
+    }
+    assert!(!Path::new("never.png").exists() && !Path::new("never.gif").exists());
+}
+
+#[test]
+fn the_window_names_a_missing_shader_folder_before_it_looks_for_a_display() {
+    let err = assert_clean_failure(&rolypoly_without_display(&[
+        "--shaders",
+        "/no/such/shader-folder",
+    ]));
+    assert!(err.contains("/no/such/shader-folder"), "{err}");
+    assert!(!err.contains("display"), "{err}");
+}
+
+#[test]
+fn the_motion_view_of_a_moment_shows_what_moved_in_the_frame_before_it() {
+    for seed in ["2", "9"] {
+        let out = scratch(&format!("motion-{seed}.png"));
+        let out_str = out.to_str().expect("UTF-8 path");
+        let output = rolypoly(&[
+            "--seed", seed, "render", "--time", "0.8", "--size", "160x90", "--view", "motion",
+            "--out", out_str,
+        ]);
+        assert!(output.status.success(), "{}", stderr(&output));
+        assert!(
+            stdout(&output).contains("view motion:"),
+            "{}",
+            stdout(&output)
+        );
+        let img = image::open(&out).expect("a PNG").to_rgba8();
+        let moving = img
+            .pixels()
+            .filter(|p| p.0[..3].iter().any(|&c| c > 8))
+            .count();
+        // The falling and rolling balls, not the still room.
+        assert!(
+            moving > 30 && moving < img.pixels().len() / 4,
+            "seed {seed}: {moving} pixels moving"
+        );
+    }
+}

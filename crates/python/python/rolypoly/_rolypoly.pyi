@@ -12,6 +12,10 @@ StrPath = Union[str, "PathLike[str]"]
 EngineName = Literal["cpu", "gpu"]
 QualityName = Literal["high", "medium", "low", "auto"]
 DebugView = Literal["contacts", "impulses", "velocities", "grid", "rest", "com"]
+FrameViewName = Literal[
+    "final", "albedo", "normals", "depth", "shadow-cube", "shadow", "ambient", "diffuse",
+    "specular", "bounce", "occlusion", "bloom", "motion", "history", "msaa-edges",
+]
 EventKind = Literal[
     "ball_surface", "ball_ball", "ball_tumbler", "fireball_surface", "fireball_ball", "fireball_tumbler"
 ]
@@ -226,10 +230,14 @@ def render(
     camera: Optional[Tuple[Vector, Vector]] = None,
     quality: Optional[QualityName] = None,
     show: Optional[Union[str, Sequence[DebugView]]] = None,
+    view: Optional[FrameViewName] = None,
 ) -> npt.NDArray[np.uint8]:
-    """An (H, W, 4) uint8 RGBA frame, as `rolypoly render` draws it."""
+    """An (H, W, 4) uint8 RGBA frame, as `rolypoly render` draws it (`view`: as `--view`)."""
 
 def overview_camera(world: World) -> Tuple[Point, Point]: ...
+
+def frame_views() -> List[Tuple[str, str]]:
+    """Every view of the frame's passes `render` takes: (name, what it shows)."""
 
 def record(
     world: World,
@@ -240,6 +248,7 @@ def record(
     camera: Optional[Tuple[Vector, Vector]] = None,
     quality: Optional[QualityName] = None,
     show: Optional[Union[str, Sequence[DebugView]]] = None,
+    view: Optional[FrameViewName] = None,
 ) -> int:
     """Steps the world on and writes a clip (.gif, .mp4 or DIR/) as `rolypoly record`; the frame count."""
 

@@ -88,11 +88,13 @@ pub struct WindowOptions {
 
 /// Opens the window on `sandbox` and runs until it is closed.
 pub fn run(sandbox: Sandbox, options: WindowOptions) -> anyhow::Result<()> {
+    // What the flags name (a shader folder) is checked before a display
+    // is looked for: its error is the one to fix, wherever the window runs.
+    let mut app = App::new(sandbox, options)?;
     let event_loop = EventLoop::new().context(
         "cannot open a window: no display was found (set DISPLAY or WAYLAND_DISPLAY, \
          or use the `render` and `simulate` commands, which need none)",
     )?;
-    let mut app = App::new(sandbox, options)?;
     event_loop
         .run_app(&mut app)
         .context("the window's event loop failed")?;
