@@ -34,7 +34,23 @@ pub enum GpuError {
         /// What it said.
         message: String,
     },
-    /// A limit of the device is too small for the scene.
+    /// A limit of the device is too small for the engine itself, whatever
+    /// the scene: no smaller scene runs on it.
+    #[error(
+        "the gpu engine needs {what} of {need}, and the graphics adapter {adapter} allows {have}, \
+         whatever the scene; run with --engine cpu"
+    )]
+    EngineLimit {
+        /// The adapter, in words.
+        adapter: String,
+        /// Which limit.
+        what: &'static str,
+        /// What the engine needs.
+        need: u64,
+        /// What the device allows.
+        have: u64,
+    },
+    /// A limit of the device is too small for the scene's size.
     #[error(
         "the gpu engine needs {what} of {need} for this scene, and the graphics adapter {adapter} \
          allows {have}; use fewer balls, larger balls or a smaller room, or run with --engine cpu"

@@ -15,7 +15,9 @@
 //! at least three frames and for at least two seconds: a software renderer
 //! is done within five minutes, and a GPU's figure averages over hundreds
 //! of frames. Last, half a second in, every debug view at once against
-//! none, and the processor's time to build their lines from the world.
+//! none, and the processor's time to build their lines from the world;
+//! then each view of the frame's passes against the finished frame, frame
+//! by frame in turn: its rate over the frame's, and the time it adds.
 //!
 //! `cargo bench -p rolypoly-render --bench frame -- --row-seconds S` draws
 //! each row for at least S seconds instead of two (a GPU's rows need less);
@@ -27,8 +29,8 @@
 
 use rolypoly_physics::{World, WorldConfig};
 use rolypoly_render::{
-    Camera, DebugLayer, DebugViews, GpuBallBuffer, Light, Quality, RenderSettings, SceneView,
-    Snapshot,
+    Camera, DebugLayer, DebugViews, FrameView, GpuBallBuffer, Light, Quality, RenderSettings,
+    SceneView, Snapshot,
 };
 use std::time::{Duration, Instant};
 
@@ -195,7 +197,11 @@ fn main() {
         let build_ms = started.elapsed().as_secs_f64() * 1e3 / f64::from(builds);
         // Frame by frame in turn, so that whatever else the machine does
         // slows both alike.
-        let (without, frame) = measure_in_turn(&mut snap, [&plain, &shown], &camera);
+        let (without, frame) = measure_in_turn(
+            &mut snap,
+            [(&plain, FrameView::Final), (&shown, FrameView::Final)],
+            &camera,
+        );
         print_row("  half a second in", &without);
         print_row("  every debug view", &frame);
         println!(
@@ -211,12 +217,36 @@ fn main() {
             let mut alone = DebugViews::default();
             alone.set(layer, true);
             let view = plain.clone().with_debug(&stepped, &[], &alone);
-            let (none, frame) = measure_in_turn(&mut snap, [&plain, &view], &camera);
+            let (none, frame) = measure_in_turn(
+                &mut snap,
+                [(&plain, FrameView::Final), (&view, FrameView::Final)],
+                &camera,
+            );
             println!(
                 "{:<36} {:>8} {:>10.2}",
                 format!("  {} alone over none", layer.name()),
                 "",
                 frame.per_second / none.per_second
+            );
+        }
+        // Each view of the frame's passes, in turn with the finished frame:
+        // what showing one pass costs over drawing the frame.
+        for shown in FrameView::ALL.into_iter().skip(1) {
+            let (finished, frame) = measure_in_turn(
+                &mut snap,
+                [(&plain, FrameView::Final), (&plain, shown)],
+                &camera,
+            );
+            println!(
+                "{:<36} {:>8} {:>10.2} {:>14} {:>11}",
+                format!("  view {} over final", shown.name()),
+                "",
+                frame.per_second / finished.per_second,
+                format!(
+                    "{:+.1} ms",
+                    1e3 * (1.0 / frame.per_second - 1.0 / finished.per_second)
+                ),
+                frame.draw_calls
             );
         }
     }
@@ -300,11 +330,12 @@ struct Frames {
     draw_calls: u32,
 }
 
-/// Draws the two `views` in turn, frame by frame, for as long as
-/// [`measure`] draws one; returns each one's frames.
+/// Draws the two scenes of `views` in turn, each shown as its view of the
+/// frame, frame by frame, for as long as [`measure`] draws one; returns
+/// each one's frames.
 fn measure_in_turn(
     snap: &mut Snapshot,
-    views: [&SceneView; 2],
+    views: [(&SceneView, FrameView); 2],
     camera: &Camera,
 ) -> (Frames, Frames) {
     let min_seconds = 2.0 * ROW_SECONDS.get().copied().unwrap_or(2.0);
@@ -312,13 +343,15 @@ fn measure_in_turn(
     let mut cpu = [Duration::ZERO; 2];
     let mut draw_calls = [0; 2];
     let mut count = 0u32;
-    for view in views {
+    for (view, shown) in views {
+        snap.renderer.set_view(shown);
         snap.draw(view, camera)
             .unwrap_or_else(|e| panic!("frame: {e}"));
     }
     let start = Instant::now();
     while count < 3 || start.elapsed().as_secs_f64() < min_seconds {
-        for (k, view) in views.iter().enumerate() {
+        for (k, (view, shown)) in views.iter().enumerate() {
+            snap.renderer.set_view(*shown);
             let began = Instant::now();
             let stats = snap
                 .draw(view, camera)

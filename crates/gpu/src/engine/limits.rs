@@ -7,8 +7,21 @@ use crate::device::STORAGE_BUFFERS;
 use crate::layout::MAX_ITEMS;
 
 /// Whether a device of `limits` holds buffers of `sizes`; else the
-/// first limit that is too small, named.
+/// first limit that is too small, named: the engine's own needs first
+/// (no scene changes them), then those the scene's size decides.
 pub fn check_limits(limits: &wgpu::Limits, sizes: &Sizes, adapter: &str) -> Result<(), GpuError> {
+    let engine_limit = |what, need: u64, have: u64| {
+        if need > have {
+            Err(GpuError::EngineLimit {
+                adapter: adapter.to_owned(),
+                what,
+                need,
+                have,
+            })
+        } else {
+            Ok(())
+        }
+    };
     let limit = |what, need: u64, have: u64| {
         if need > have {
             Err(GpuError::Limit {
@@ -21,12 +34,12 @@ pub fn check_limits(limits: &wgpu::Limits, sizes: &Sizes, adapter: &str) -> Resu
             Ok(())
         }
     };
-    limit(
+    engine_limit(
         "storage buffers per shader stage",
         u64::from(STORAGE_BUFFERS),
         u64::from(limits.max_storage_buffers_per_shader_stage),
     )?;
-    limit(
+    engine_limit(
         "buffers per shader stage",
         u64::from(crate::bindings::BINDINGS),
         u64::from(limits.max_buffers_and_acceleration_structures_per_shader_stage),
@@ -80,12 +93,32 @@ mod tests {
         .to_string();
         assert!(err.contains("storage buffers per shader stage"), "{err}");
         assert!(err.contains("--engine cpu"), "{err}");
+        // The engine's own need is no matter of the scene's size: no
+        // advice to shrink it.
+        assert!(err.contains("whatever the scene"), "{err}");
+        assert!(!err.contains("fewer balls"), "{err}");
+        // An adapter of ten storage buffers a stage (SwiftShader's) refuses
+        // thirty balls as it refuses a million, and says so.
+        let ten = wgpu::Limits {
+            max_storage_buffers_per_shader_stage: 10,
+            ..roomy.clone()
+        };
+        let err = check_limits(&ten, &sizes(30), "SwiftShader")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(&format!("of {STORAGE_BUFFERS},"))
+                && err.contains("allows 10")
+                && err.contains("whatever the scene"),
+            "{err}"
+        );
         // 256 MiB bindings hold two million balls' contacts, not three.
         assert!(check_limits(&roomy, &sizes(2_000_000), "test").is_ok());
         let err = check_limits(&roomy, &sizes(3_000_000), "test")
             .unwrap_err()
             .to_string();
         assert!(err.contains("storage buffer binding size"), "{err}");
+        assert!(err.contains("fewer balls"), "{err}");
         assert!(err.contains("288000000"), "{err}");
     }
 }
