@@ -10,56 +10,57 @@ use crate::layout::MAX_ITEMS;
 /// first limit that is too small, named: the engine's own needs first
 /// (no scene changes them), then those the scene's size decides.
 pub fn check_limits(limits: &wgpu::Limits, sizes: &Sizes, adapter: &str) -> Result<(), GpuError> {
-    let engine_limit = |what, need: u64, have: u64| {
-        if need > have {
-            Err(GpuError::EngineLimit {
-                adapter: adapter.to_owned(),
+    // Whether the scene's size decides the need (and a smaller scene
+    // would fit), or the engine's own make-up does.
+    let limit = |what, need: u64, have: u64, by_scene: bool| {
+        let adapter = || adapter.to_owned();
+        match (need > have, by_scene) {
+            (false, _) => Ok(()),
+            (true, true) => Err(GpuError::Limit {
+                adapter: adapter(),
                 what,
                 need,
                 have,
-            })
-        } else {
-            Ok(())
-        }
-    };
-    let limit = |what, need: u64, have: u64| {
-        if need > have {
-            Err(GpuError::Limit {
-                adapter: adapter.to_owned(),
+            }),
+            (true, false) => Err(GpuError::EngineLimit {
+                adapter: adapter(),
                 what,
                 need,
                 have,
-            })
-        } else {
-            Ok(())
+            }),
         }
     };
-    engine_limit(
+    limit(
         "storage buffers per shader stage",
         u64::from(STORAGE_BUFFERS),
         u64::from(limits.max_storage_buffers_per_shader_stage),
+        false,
     )?;
-    engine_limit(
+    limit(
         "buffers per shader stage",
         u64::from(crate::bindings::BINDINGS),
         u64::from(limits.max_buffers_and_acceleration_structures_per_shader_stage),
+        false,
     )?;
     limit(
         "a storage buffer binding size (bytes)",
         sizes.largest_buffer(),
         limits.max_storage_buffer_binding_size,
+        true,
     )?;
     limit(
         "a buffer size (bytes)",
         sizes.largest_buffer(),
         limits.max_buffer_size,
+        true,
     )?;
     limit(
         "grid cells",
         sizes.cells + 1,
         MAX_ITEMS.min(u64::from(u32::MAX)),
+        true,
     )?;
-    limit("balls", sizes.balls, MAX_ITEMS)
+    limit("balls", sizes.balls, MAX_ITEMS, true)
 }
 
 #[cfg(test)]
