@@ -41,9 +41,9 @@ struct Globals {
     // measured between the two (see `motion_of`).
     motion_view_proj: mat4x4<f32>,
     previous_view_proj: mat4x4<f32>,
-    // What the frame shows (frame_view.rs): x: VIEW_FINAL or one pass's
-    // VIEW_*; y, z: the depth view's distances for white and black;
-    // w: the motion view's pixels a frame at full brightness.
+    // For the frame's views (frame_view.rs): x: unused (which view is
+    // shown is FRAME_VIEW); y, z: the depth view's distances for white and
+    // black; w: the motion view's pixels a frame at full brightness.
     frame_view: vec4<f32>,
     // xy: the scene's size in pixels, for the motion view; zw: unused.
     frame_size: vec4<f32>,
@@ -321,6 +321,12 @@ fn blinn_phong(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f
 
 // --- the frame's views (frame_view.rs) -----------------------------------------
 
+// The view the pipelines draw: VIEW_FINAL, or one pass's VIEW_*. A
+// constant of the pipeline, not a uniform, so that the finished frame's
+// shader holds none of the views' code (a software rasterizer runs a
+// uniform branch's both sides).
+override FRAME_VIEW: u32 = 0u;
+
 const VIEW_FINAL: u32 = 0u;
 const VIEW_ALBEDO: u32 = 1u;
 const VIEW_NORMALS: u32 = 2u;
@@ -350,11 +356,10 @@ fn motion_color(motion: vec2<f32>) -> vec3<f32> {
 // What a lit surface writes: its lit colour, or in a view of one pass,
 // that pass's value.
 fn shown(base: vec3<f32>, world: vec3<f32>, n: vec3<f32>, material: vec4<f32>, motion: vec2<f32>) -> vec3<f32> {
-    let view = u32(globals.frame_view.x);
-    if view == VIEW_FINAL {
+    if FRAME_VIEW == VIEW_FINAL {
         return blinn_phong(base, world, n, material);
     }
-    return surface_view(view, base, world, n, light_terms(base, world, n, material), motion);
+    return surface_view(FRAME_VIEW, base, world, n, light_terms(base, world, n, material), motion);
 }
 
 // The value view `view` shows of a surface whose light is `terms`.
@@ -581,9 +586,8 @@ fn fs_emissive(in: VertexOut) -> SceneFragment {
     let n = normalize(in.normal);
     let motion = motion_of(in.world, in.previous);
     var color = in.color.rgb * in.material.w;
-    let view = u32(globals.frame_view.x);
-    if view != VIEW_FINAL {
-        color = unlit_view(view, in.color.rgb, in.world, n, motion);
+    if FRAME_VIEW != VIEW_FINAL {
+        color = unlit_view(FRAME_VIEW, in.color.rgb, in.world, n, motion);
     }
     return SceneFragment(vec4<f32>(color, 1.0), geometry_of(in.world, n), motion);
 }

@@ -9,10 +9,15 @@ struct Params {
     // (0: no bloom); z: occlusion on (1) or off (0); w: the bloom's chain
     // has a second level (1) or not (0).
     values: vec4<f32>,
-    // x: how the frame is shown (one of SHOW_*; frame_view.rs's `Finish`);
-    // y: the output encodes sRGB itself (1) or not (0).
+    // x: unused (how the frame is shown is SHOW); y: the output encodes
+    // sRGB itself (1) or not (0).
     view: vec4<f32>,
 };
+
+// How the frame is shown: one of SHOW_* (frame_view.rs's `Finish`). A
+// constant of the pipeline, so that the finished frame's shader holds none
+// of the views' code.
+override SHOW: u32 = 0u;
 
 const SHOW_FRAME: u32 = 0u;
 const SHOW_DATA: u32 = 1u;
@@ -87,7 +92,7 @@ fn fs_tonemap(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
     // Drawn at the size the scene was lit at: each pixel reads its own.
     let uv = position.xy / vec2<f32>(textureDimensions(hdr));
     var color = textureLoad(hdr, vec2<i32>(position.xy), 0).rgb;
-    switch u32(params.view.x) {
+    switch SHOW {
         case SHOW_DATA: { return vec4<f32>(as_data(color), 1.0); }
         case SHOW_CURVE: { return vec4<f32>(aces(color * params.values.x), 1.0); }
         case SHOW_OCCLUSION: {

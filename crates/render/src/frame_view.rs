@@ -62,6 +62,23 @@ pub(crate) enum Drawn {
     Extra,
 }
 
+/// The constants a view builds the pipelines with: what the scene shader
+/// writes (scene.wgsl's `FRAME_VIEW`: 0 the lit colour, else a pass's
+/// `VIEW_*`) and how tone mapping shows it (tonemap.wgsl's `SHOW`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct ViewCodes {
+    pub scene: u32,
+    pub show: u32,
+}
+
+impl ViewCodes {
+    /// The finished frame's: the lit colour, tone-mapped as the frame.
+    pub const FINAL: ViewCodes = ViewCodes {
+        scene: 0,
+        show: Finish::Frame as u32,
+    };
+}
+
 /// How tone mapping shows what it reads (tonemap.wgsl's `SHOW_*`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Finish {
@@ -302,6 +319,22 @@ impl FrameView {
             caption += &format!(" - empty here: {why}");
         }
         caption
+    }
+
+    /// What the pipelines are built to draw for it: views of one code draw
+    /// alike but for the pass over the frame that [`Drawn::Extra`] adds.
+    pub(crate) fn codes(self) -> ViewCodes {
+        match self.drawn() {
+            Drawn::Scene { code, finish } => ViewCodes {
+                scene: code,
+                show: finish as u32,
+            },
+            Drawn::Tonemap(finish) => ViewCodes {
+                scene: 0,
+                show: finish as u32,
+            },
+            Drawn::Final | Drawn::Extra => ViewCodes::FINAL,
+        }
     }
 
     /// Where its pixels come from.

@@ -10,6 +10,7 @@ use crate::shadow::ShadowCube;
 pub(super) const IRRADIANCE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// The bind group layouts the pipelines are built on.
+#[derive(Clone)]
 pub(super) struct Layouts {
     /// The lit scene: globals, the shadow faces with their comparison
     /// sampler, the paint texture with its sampler, and the irradiance

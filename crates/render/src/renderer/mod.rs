@@ -18,7 +18,7 @@
 //! into ([`targets`]), the two post passes and the cursor ([`cursor`]).
 
 use crate::camera::Camera;
-use crate::frame_view::{Drawn, Finish, FrameView};
+use crate::frame_view::{Drawn, FrameView, ViewCodes};
 use crate::gpu::{Gpu, RenderError};
 use crate::instances::{self, BallInstance, Instance, InstanceBuffer, PreviousModel, Ranges};
 use crate::irradiance::{DIRECTIONS, IrradianceVolume, MAX_PROBES};
@@ -203,6 +203,13 @@ pub struct Renderer {
     settings: RenderSettings,
     output_format: wgpu::TextureFormat,
     pipelines: Pipelines,
+    /// The pipelines of the view shown before, kept: switching back and
+    /// forth between two views builds nothing.
+    other_pipelines: Option<Pipelines>,
+    /// What the pipelines are built from, to build them again for another
+    /// view of the frame.
+    shaders: ShaderSet,
+    layouts: Layouts,
     bloom: BloomPipelines,
     occlusion: OcclusionPipeline,
     tonemap_layout: wgpu::BindGroupLayout,
@@ -345,7 +352,17 @@ impl Renderer {
         Renderer {
             settings,
             output_format,
-            pipelines: Pipelines::new(device, shaders, &layouts, &settings, output_format),
+            pipelines: Pipelines::new(
+                device,
+                shaders,
+                &layouts,
+                &settings,
+                output_format,
+                ViewCodes::FINAL,
+            ),
+            other_pipelines: None,
+            shaders: shaders.clone(),
+            layouts: layouts.clone(),
             bloom: BloomPipelines::new(device, shaders),
             occlusion: OcclusionPipeline::new(device, shaders),
             tonemap_layout: layouts.tonemap,
@@ -399,6 +416,28 @@ impl Renderer {
     /// one of its passes (see [`FrameView`]).
     pub fn set_view(&mut self, view: FrameView) {
         self.view = view;
+    }
+
+    /// The scene's pipelines drawing the view shown: built again where the
+    /// view changed what the scene shader writes (a pass's value, or the
+    /// lit colour).
+    fn ensure_view_pipelines(&mut self, gpu: &Gpu) {
+        let codes = self.view.codes();
+        if self.pipelines.view == codes {
+            return;
+        }
+        let wanted = match self.other_pipelines.take() {
+            Some(other) if other.view == codes => other,
+            _ => Pipelines::new(
+                &gpu.device,
+                &self.shaders,
+                &self.layouts,
+                &self.settings,
+                self.output_format,
+                codes,
+            ),
+        };
+        self.other_pipelines = Some(std::mem::replace(&mut self.pipelines, wanted));
     }
 
     /// What the frames show.
@@ -496,6 +535,7 @@ impl Renderer {
         let gpu_times = self.timer.as_mut().and_then(|t| t.collect(&gpu.device));
         let timed = self.timing && self.timer.as_ref().is_some_and(GpuTimer::free);
         self.ensure_targets(gpu, width, height);
+        self.ensure_view_pipelines(gpu);
         std::mem::swap(&mut self.instances.items, &mut self.last_instances);
         let ranges = instances::fill_scene(&mut self.instances.items, view);
         instances::fill_previous(
@@ -579,16 +619,12 @@ impl Renderer {
             .light
             .bloom
             .map_or(0.0, |b| b.strength / targets.bloom.levels as f32);
-        let finish = match self.view.drawn() {
-            Drawn::Scene { finish, .. } | Drawn::Tonemap(finish) => finish,
-            Drawn::Final | Drawn::Extra => Finish::Frame,
-        };
         let params = [
             self.settings.exposure,
             glow,
             flag(view.light.occlusion),
             flag(targets.bloom.levels > 1),
-            finish as u32 as f32,
+            0.0,
             flag(self.output_format.is_srgb()),
             0.0,
             0.0,
@@ -722,10 +758,7 @@ impl Renderer {
             motion_view_proj: projections.unjittered.to_cols_array_2d(),
             previous_view_proj: projections.previous.to_cols_array_2d(),
             frame_view: [
-                match self.view.drawn() {
-                    Drawn::Scene { code, .. } => code as f32,
-                    _ => 0.0,
-                },
+                0.0,
                 0.0,
                 farthest_from(camera.eye, view.room_size),
                 crate::frame_view::MOTION_FULL_PIXELS,

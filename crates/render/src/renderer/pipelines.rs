@@ -4,6 +4,7 @@
 use super::bindings::Layouts;
 use super::taa::MOTION_FORMAT;
 use super::{DEPTH_FORMAT, GEOMETRY_FORMAT, HDR_FORMAT, RenderSettings};
+use crate::frame_view::ViewCodes;
 use crate::instances::{BALL_MATERIAL, BallInstance, Instance, PreviousModel};
 use crate::mesh::Vertex;
 use crate::shaders::{self, ShaderFile, ShaderSet};
@@ -28,17 +29,21 @@ pub(super) struct Pipelines {
     pub tonemap: wgpu::RenderPipeline,
     /// The frame tone-mapped at a lower resolution, spread over the output.
     pub upscale: wgpu::RenderPipeline,
+    /// The view the scene's and tone mapping's pipelines draw.
+    pub view: ViewCodes,
 }
 
 impl Pipelines {
     /// The pipelines for `settings` (its multisample count and early ball
-    /// depth as the adapter allows), tone mapping into `output_format`.
+    /// depth as the adapter allows), tone mapping into `output_format`,
+    /// drawing the view of the frame `view` codes.
     pub fn new(
         device: &wgpu::Device,
         shaders: &ShaderSet,
         layouts: &Layouts,
         settings: &RenderSettings,
         output_format: wgpu::TextureFormat,
+        view: ViewCodes,
     ) -> Pipelines {
         let msaa = settings.msaa;
         let scene = shaders.source(&shaders::SCENE);
@@ -62,7 +67,8 @@ impl Pipelines {
         ];
         let temporal = settings.temporal;
         let shadow_taps = ("SHADOW_TAPS", f64::from(settings.shadow_taps));
-        let scene_constants = [shadow_taps];
+        let frame_view = ("FRAME_VIEW", f64::from(view.scene));
+        let scene_constants = [shadow_taps, frame_view];
         // Opaque passes write depth; see-through ones blend and only test it.
         let scene_pipeline_for = |entry: &str, label: &str, blend: Option<wgpu::BlendState>| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -115,6 +121,7 @@ impl Pipelines {
             ("BALL_SPECULAR", f64::from(specular)),
             ("BALL_SHININESS", f64::from(shininess)),
             shadow_taps,
+            frame_view,
         ];
         let ball_buffers = [Some(Vertex::layout()), Some(BallInstance::layout())];
         let ball_scene_buffers = [
@@ -228,13 +235,14 @@ impl Pipelines {
             "ball shadow",
         );
 
-        let tonemap_pipeline = screen_pipeline(
+        let tonemap_pipeline = screen_pipeline_into(
             device,
             "tonemap",
             &layouts.tonemap,
             &tonemap_shader,
             ("vs_screen", "fs_tonemap"),
-            output_format.into(),
+            &[Some(output_format.into())],
+            &[("SHOW", f64::from(view.show))],
         );
 
         let upscale_shader = screen_shader(device, shaders, &shaders::UPSCALE);
@@ -256,6 +264,7 @@ impl Pipelines {
             ball_shadow: ball_shadow_pipeline,
             tonemap: tonemap_pipeline,
             upscale: upscale_pipeline,
+            view,
         }
     }
 }
@@ -323,10 +332,12 @@ pub(super) fn screen_pipeline(
         shader,
         (vertex, fragment),
         &[Some(target)],
+        &[],
     )
 }
 
-/// As [`screen_pipeline`], drawing into several `targets` at once.
+/// As [`screen_pipeline`], drawing into several `targets` at once, the
+/// fragment shader's overridable constants set to `constants`.
 pub(super) fn screen_pipeline_into(
     device: &wgpu::Device,
     label: &str,
@@ -334,6 +345,7 @@ pub(super) fn screen_pipeline_into(
     shader: &wgpu::ShaderModule,
     (vertex, fragment): (&str, &str),
     targets: &[Option<wgpu::ColorTargetState>],
+    constants: &[(&str, f64)],
 ) -> wgpu::RenderPipeline {
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
@@ -355,7 +367,10 @@ pub(super) fn screen_pipeline_into(
         fragment: Some(wgpu::FragmentState {
             module: shader,
             entry_point: Some(fragment),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
             targets,
         }),
         multiview_mask: None,

@@ -140,6 +140,7 @@ impl TaaPipelines {
             &shader,
             ("vs_screen", "fs_neighbourhood"),
             &[target.clone(), target],
+            &[],
         );
         let pipeline = |label, entry, format: wgpu::TextureFormat| {
             screen_pipeline(

@@ -154,8 +154,8 @@ const KEYS: [(&str, &str); 24] = [
     ),
     ("I", "re-initialise the balls"),
     (
-        "V and Shift+V",
-        "the next, the previous view of the frame: final, albedo, normals, depth, shadow cube, shadow, each light term, bounce, occlusion, bloom, motion, history, multisampled edges",
+        "V / Shift+V",
+        "the next / previous view of the frame's passes (Tab's panel lists them)",
     ),
     (
         "O",
