@@ -88,13 +88,17 @@ pub struct WindowOptions {
 
 /// Opens the window on `sandbox` and runs until it is closed.
 pub fn run(sandbox: Sandbox, options: WindowOptions) -> anyhow::Result<()> {
-    // What the flags name (a shader folder) is checked before a display
-    // is looked for: its error is the one to fix, wherever the window runs.
-    let mut app = App::new(sandbox, options)?;
+    // A shader folder the flags name is read before a display is looked
+    // for: its error is the one to fix, wherever the window runs.
+    let shaders = match &options.shaders {
+        Some(dir) => ShaderSet::load(dir)?,
+        None => ShaderSet::shipped(),
+    };
     let event_loop = EventLoop::new().context(
         "cannot open a window: no display was found (set DISPLAY or WAYLAND_DISPLAY, \
          or use the `render` and `simulate` commands, which need none)",
     )?;
+    let mut app = App::new(sandbox, options, shaders)?;
     event_loop
         .run_app(&mut app)
         .context("the window's event loop failed")?;
@@ -213,18 +217,19 @@ struct App {
 }
 
 impl App {
-    fn new(sandbox: Sandbox, options: WindowOptions) -> anyhow::Result<App> {
+    /// The app on `sandbox`, drawing with `shaders` (the flags' folder's,
+    /// read, or the shipped ones).
+    fn new(sandbox: Sandbox, options: WindowOptions, shaders: ShaderSet) -> anyhow::Result<App> {
         let world = sandbox.world();
         let room = world.config().room.size.as_vec3();
         let tumbler_spheres = world.config().tumblers.spheres.clone();
         let (tumbler_mesh, coarse_tumbler, paint) = tumbler_look(&tumbler_spheres)?;
         let camera = FlyCamera::from_camera(&Camera::overview(room));
-        // A folder that cannot be drawn with is the one error the window
-        // opens with instead.
-        let (shaders, shader_watch) = match &options.shaders {
-            Some(dir) => (ShaderSet::load(dir)?, Some(ShaderWatch::new(dir)?)),
-            None => (ShaderSet::shipped(), None),
-        };
+        let shader_watch = options
+            .shaders
+            .as_deref()
+            .map(ShaderWatch::new)
+            .transpose()?;
         let mut panel = Panel::new(options.scene_file.clone());
         panel.view = options.view;
         Ok(App {
