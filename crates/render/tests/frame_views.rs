@@ -258,16 +258,13 @@ fn ambient_diffuse_and_specular_add_up_to_the_lit_frame() {
             if frame[..3].contains(&255) {
                 continue;
             }
-            for channel in 0..3 {
+            for (channel, &shown) in frame[..3].iter().enumerate() {
                 let light: f32 = frames[1..]
                     .iter()
-                    .map(|term| {
-                        let p = term.as_raw()[4 * i + channel];
-                        aces_inverse(srgb_decode(p))
-                    })
+                    .map(|term| aces_inverse(srgb_decode(term.as_raw()[4 * i + channel])))
                     .sum();
                 let summed = srgb_encode(aces(light));
-                error += (summed - frame[channel] as f32).abs() as f64;
+                error += (summed - shown as f32).abs() as f64;
             }
             counted += 1;
             lit += usize::from(frame[..3].iter().any(|&c| c > 20));

@@ -8,11 +8,15 @@ use std::process::Command;
 
 mod pages;
 
-use pages::ROOT;
+use pages::{ROOT, pages};
 
+/// docs/learn-the-frame.md, one of the pages.
 fn page() -> String {
-    std::fs::read_to_string(Path::new(ROOT).join("docs/learn-the-frame.md"))
-        .expect("docs/learn-the-frame.md")
+    let path = pages()
+        .into_iter()
+        .find(|p| p.ends_with("docs/learn-the-frame.md"))
+        .expect("docs/learn-the-frame.md is a page");
+    std::fs::read_to_string(path).expect("docs/learn-the-frame.md is readable")
 }
 
 /// Each ```wgsl block of the page: the file its first line names, and its
