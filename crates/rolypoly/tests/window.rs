@@ -470,7 +470,7 @@ fn a_person_flies_shoots_pauses_grabs_resets_throws_steps_records_and_screenshot
     quit(&mut s, app);
 }
 
-/// F12's screenshot, once the window says where it wrote it.
+/// The screenshot the F12 key takes, once the window says where it wrote it.
 fn shot(s: &mut Session) -> PathBuf {
     s.xdotool(&["key", "F12"]);
     let taken = s.expect("a screenshot", |v| v["event"] == "screenshot");
