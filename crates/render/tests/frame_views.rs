@@ -40,7 +40,8 @@ fn camera(config: &WorldConfig) -> Camera {
     Camera::overview(config.room.size.as_vec3())
 }
 
-fn drawn(config: &WorldConfig, scene: &SceneView, view: FrameView, msaa: u32) -> RgbaImage {
+/// A renderer of [`SIZE`] with `msaa` samples, showing `view`.
+fn snapshot(config: &WorldConfig, view: FrameView, msaa: u32) -> Snapshot {
     let settings = RenderSettings {
         msaa,
         ..RenderSettings::default()
@@ -48,7 +49,13 @@ fn drawn(config: &WorldConfig, scene: &SceneView, view: FrameView, msaa: u32) ->
     let mut snap =
         Snapshot::new(config, settings, SIZE.0, SIZE.1, None).expect("an adapter to draw with");
     snap.renderer.set_view(view);
-    snap.capture(scene, &camera(config)).expect("frame")
+    snap
+}
+
+fn drawn(config: &WorldConfig, scene: &SceneView, view: FrameView, msaa: u32) -> RgbaImage {
+    snapshot(config, view, msaa)
+        .capture(scene, &camera(config))
+        .expect("frame")
 }
 
 /// The value (0 ..= 1 a channel) a data view wrote at `pixel`.
@@ -180,9 +187,7 @@ fn a_ball_moved_under_the_light_moves_its_silhouette_on_the_down_face_by_its_pro
 fn motion_is_zero_everywhere_over_a_still_scene_from_a_still_camera() {
     for seed in [0, 1] {
         let (config, scene) = room_with_ball(ball_at(seed));
-        let mut snap = Snapshot::new(&config, RenderSettings::default(), SIZE.0, SIZE.1, None)
-            .expect("an adapter to draw with");
-        snap.renderer.set_view(FrameView::Motion);
+        let mut snap = snapshot(&config, FrameView::Motion, 4);
         for frame in 0..2 {
             let img = snap.capture(&scene, &camera(&config)).expect("frame");
             let moving = img.pixels().filter(|p| p.0[..3] != [0, 0, 0]).count();
@@ -309,9 +314,7 @@ fn motion_at(img: &RgbaImage, pixel: (u32, u32)) -> Vec2 {
 fn a_panning_cameras_floor_moves_on_screen_as_the_camera_does() {
     for seed in [0, 1] {
         let (config, scene) = room_with_ball(ball_at(seed));
-        let mut snap = Snapshot::new(&config, RenderSettings::default(), SIZE.0, SIZE.1, None)
-            .expect("an adapter to draw with");
-        snap.renderer.set_view(FrameView::Motion);
+        let mut snap = snapshot(&config, FrameView::Motion, 4);
         let before = camera(&config);
         // A turn to the side and a step along, a few pixels' worth.
         let step = Vec3::new(0.03 + 0.01 * seed as f32, 0.0, 0.02);
@@ -351,13 +354,7 @@ fn multisampled_edges_are_none_with_one_sample_and_on_outlines_with_four() {
             single.pixels().all(|p| p.0[..3] == [0, 0, 0]),
             "seed {seed}"
         );
-        let settings = RenderSettings {
-            msaa: 4,
-            ..RenderSettings::default()
-        };
-        let mut snap = Snapshot::new(&config, settings, SIZE.0, SIZE.1, None)
-            .expect("an adapter to draw with");
-        snap.renderer.set_view(FrameView::MsaaEdges);
+        let mut snap = snapshot(&config, FrameView::MsaaEdges, 4);
         let four = snap.capture(&scene, &camera(&config)).expect("frame");
         let caption = snap.renderer.caption(&scene, &camera(&config));
         let backend = snap.gpu.adapter.get_info().backend;
