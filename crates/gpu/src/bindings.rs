@@ -1,10 +1,16 @@
-//! The buffers every ball pass binds, in the order of their bindings in
-//! `step/common.wgsl`, and the one bind group that holds them.
+//! The buffers the ball passes bind, in the order of their bindings in
+//! `step/common.wgsl`; each pipeline binds those its entry point uses
+//! (see `step/reflect.rs`).
+//!
+//! WebGPU promises a shader stage only 8 storage buffers, and the solver
+//! reads some twenty arrays. So arrays of one element type live in one
+//! buffer, section after section: the WGSL reads section `VEL` of
+//! `motion` as `motion[VEL + i]`, each section's first element a constant
+//! written above the WGSL from [`Packing`]. A ball's sections are each as
+//! long as the buffers have room for balls, so that each keeps the order of
+//! its own array (neighbouring threads read neighbouring elements).
 
 use crate::layout::{Body, Catch, EVENT_CAPACITY, IMPACT_ROUNDS, SLOTS};
-
-/// Bindings in the group: the uniform and the storage buffers.
-pub const BINDINGS: u32 = 32;
 
 /// A storage buffer a compute pass reads and writes.
 pub const READ_WRITE: wgpu::BufferBindingType =
@@ -24,41 +30,116 @@ pub fn compute_buffer(binding: u32, ty: wgpu::BufferBindingType) -> wgpu::BindGr
     }
 }
 
-/// Each buffer, named by what it holds (see `common.wgsl`).
-pub struct Buffers {
-    pub params: wgpu::Buffer,
-    pub pos: wgpu::Buffer,
-    pub vel: wgpu::Buffer,
-    pub spin: wgpu::Buffer,
-    pub vel_start: wgpu::Buffer,
-    pub delta: wgpu::Buffer,
-    pub delta_spin: wgpu::Buffer,
-    pub state: wgpu::Buffer,
-    pub cell_of: wgpu::Buffer,
-    pub cell_start: wgpu::Buffer,
-    pub cell_fill: wgpu::Buffer,
-    pub cell_balls: wgpu::Buffer,
-    pub slot_other: wgpu::Buffer,
-    pub slot_impulse: wgpu::Buffer,
-    pub wall_impulse: wgpu::Buffer,
-    pub body_of: wgpu::Buffer,
-    pub body_impulse: wgpu::Buffer,
-    pub bodies: wgpu::Buffer,
-    pub palette: wgpu::Buffer,
-    pub instances: wgpu::Buffer,
-    pub tumbler_push: wgpu::Buffer,
-    pub events: wgpu::Buffer,
-    pub event_count: wgpu::Buffer,
-    pub first_contact: wgpu::Buffer,
-    pub body_impact: wgpu::Buffer,
-    pub cell_speed: wgpu::Buffer,
-    pub near_speed: wgpu::Buffer,
-    pub slot_mirror: wgpu::Buffer,
-    pub impact_count: wgpu::Buffer,
-    pub ball_rank: wgpu::Buffer,
-    pub slot_impulse_more: wgpu::Buffer,
-    pub shift: wgpu::Buffer,
+/// How long a section is.
+#[derive(Clone, Copy)]
+enum Extent {
+    /// So many elements a ball.
+    Balls(u64),
+    /// One element a grid cell and one past the last.
+    Cells,
+    /// So many elements.
+    Fixed(u64),
 }
+
+/// Contact slots a ball keeps in each of the impulses' two buffers (see
+/// `impulse_at` in `step/common.wgsl`).
+const HALF_SLOTS: u64 = SLOTS / 2;
+const _: () = assert!(SLOTS.is_multiple_of(2));
+
+/// The packed buffers' sections, in order, by their names in the WGSL.
+/// Velocities and spins have a second copy each (`DELTA`, `DELTA_SPIN`)
+/// that the Jacobi sweeps alternate with; `FIRST_CONTACT` and `SHIFT`
+/// hold two copies in one section.
+const MOTION: &[(&str, Extent)] = &[
+    ("POS", Extent::Balls(1)),
+    ("VEL", Extent::Balls(1)),
+    ("SPIN", Extent::Balls(1)),
+    ("VEL_START", Extent::Balls(1)),
+    ("DELTA", Extent::Balls(1)),
+    ("DELTA_SPIN", Extent::Balls(1)),
+];
+const PUSHES: &[(&str, Extent)] = &[
+    ("WALL_IMPULSE", Extent::Balls(3)),
+    ("BODY_IMPULSE", Extent::Balls(1)),
+    ("SHIFT", Extent::Balls(2)),
+];
+const SLOT_IMPULSE: &[(&str, Extent)] = &[("SLOT_IMPULSE", Extent::Balls(HALF_SLOTS))];
+const SLOT_IMPULSE_MORE: &[(&str, Extent)] = &[("SLOT_IMPULSE_MORE", Extent::Balls(HALF_SLOTS))];
+const BALL_WORDS: &[(&str, Extent)] = &[
+    ("STATE", Extent::Balls(1)),
+    ("CELL_OF", Extent::Balls(1)),
+    ("BODY_OF", Extent::Balls(1)),
+    ("BALL_RANK", Extent::Balls(1)),
+    ("CELL_BALLS", Extent::Balls(1)),
+    ("FIRST_CONTACT", Extent::Balls(2)),
+    ("BODY_IMPACT", Extent::Balls(1)),
+    ("NEAR_SPEED", Extent::Balls(1)),
+];
+const SLOT_WORDS: &[(&str, Extent)] = &[
+    ("SLOT_OTHER", Extent::Balls(SLOTS)),
+    ("SLOT_MIRROR", Extent::Balls(SLOTS)),
+];
+// The scan reads the cells' counts from the start of `cell_words`, and
+// they are copied there from the start of `counters`.
+const CELL_WORDS: &[(&str, Extent)] =
+    &[("CELL_START", Extent::Cells), ("CELL_SPEED", Extent::Cells)];
+const COUNTERS: &[(&str, Extent)] = &[
+    ("CELL_FILL", Extent::Cells),
+    ("EVENT_COUNT", Extent::Fixed(1)),
+    ("IMPACT_COUNT", Extent::Fixed(IMPACT_ROUNDS as u64)),
+];
+
+/// One packed buffer: its label, its element's size in bytes, and its
+/// sections.
+struct Packed {
+    label: &'static str,
+    element: u64,
+    sections: &'static [(&'static str, Extent)],
+}
+
+/// The packed buffers, in binding order from binding 1.
+const PACKED: [Packed; 8] = [
+    Packed {
+        label: "motion",
+        element: 16,
+        sections: MOTION,
+    },
+    Packed {
+        label: "pushes",
+        element: 16,
+        sections: PUSHES,
+    },
+    Packed {
+        label: "contact impulses",
+        element: 16,
+        sections: SLOT_IMPULSE,
+    },
+    Packed {
+        label: "contact impulses, second half",
+        element: 16,
+        sections: SLOT_IMPULSE_MORE,
+    },
+    Packed {
+        label: "ball words",
+        element: 4,
+        sections: BALL_WORDS,
+    },
+    Packed {
+        label: "contact words",
+        element: 4,
+        sections: SLOT_WORDS,
+    },
+    Packed {
+        label: "cell words",
+        element: 4,
+        sections: CELL_WORDS,
+    },
+    Packed {
+        label: "counters",
+        element: 4,
+        sections: COUNTERS,
+    },
+];
 
 /// How many of each the buffers hold.
 pub struct Sizes {
@@ -74,17 +155,57 @@ pub struct Sizes {
     pub colors: u64,
 }
 
-/// Contact slots a ball keeps in each of the impulses' two buffers (see
-/// `impulse_at` in `step/common.wgsl`).
-const HALF_SLOTS: u64 = SLOTS / 2;
-const _: () = assert!(SLOTS.is_multiple_of(2));
-
 impl Sizes {
-    /// The largest buffer's size in bytes: each half of the balls'
-    /// contacts' impulses.
-    pub fn largest_buffer(&self) -> u64 {
-        16 * HALF_SLOTS * self.balls
+    fn elements(&self, extent: Extent) -> u64 {
+        match extent {
+            Extent::Balls(k) => k * self.balls,
+            Extent::Cells => self.cells + 1,
+            Extent::Fixed(k) => k,
+        }
     }
+
+    /// Each section's first element in its buffer, and the buffer's
+    /// length in elements.
+    fn offsets(&self, packed: &Packed) -> (Vec<(&'static str, u64)>, u64) {
+        let mut at = 0;
+        let firsts = packed
+            .sections
+            .iter()
+            .map(|&(name, extent)| {
+                let first = at;
+                at += self.elements(extent);
+                (name, first)
+            })
+            .collect();
+        (firsts, at)
+    }
+
+    /// The largest buffer's size in bytes: a ball's sections of vectors.
+    pub fn largest_buffer(&self) -> u64 {
+        PACKED
+            .iter()
+            .map(|p| p.element * self.offsets(p).1)
+            .chain([32 * self.balls])
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+/// Each buffer, named by what it holds (see `common.wgsl`).
+pub struct Buffers {
+    pub params: wgpu::Buffer,
+    /// The packed buffers, in binding order from binding 1.
+    packed: Vec<wgpu::Buffer>,
+    pub bodies: wgpu::Buffer,
+    pub palette: wgpu::Buffer,
+    pub instances: wgpu::Buffer,
+    pub tumbler_push: wgpu::Buffer,
+    pub events: wgpu::Buffer,
+    /// Each section's buffer (its place in `packed`), first element and
+    /// element size, by name.
+    sections: Vec<(&'static str, usize, u64, u64)>,
+    /// Balls a section has room for.
+    capacity: u64,
 }
 
 impl Buffers {
@@ -105,112 +226,77 @@ impl Buffers {
                 mapped_at_creation: false,
             })
         };
-        let kept = U::STORAGE | U::COPY_DST | U::COPY_SRC;
-        let n = sizes.balls;
+        let mut sections = Vec::new();
+        let packed = PACKED
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let (firsts, len) = sizes.offsets(p);
+                sections.extend(
+                    firsts
+                        .into_iter()
+                        .map(|(name, first)| (name, k, first, p.element)),
+                );
+                make(p.label, p.element * len, U::STORAGE)
+            })
+            .collect();
         Buffers {
             params: make(
                 "params",
                 std::mem::size_of::<crate::layout::Params>() as u64,
                 U::UNIFORM | U::COPY_DST,
             ),
-            pos: make("positions", 16 * n, kept),
-            vel: make("velocities", 16 * n, kept),
-            spin: make("spins", 16 * n, kept),
-            vel_start: make("velocities at the step's start", 16 * n, U::STORAGE),
-            delta: make("second copy of the velocities", 16 * n, U::STORAGE),
-            delta_spin: make("second copy of the spins", 16 * n, U::STORAGE),
-            state: make("states", 4 * n, kept),
-            cell_of: make("cell of each ball", 4 * n, U::STORAGE),
-            cell_start: make(
-                "cell starts",
-                4 * (sizes.cells + 1),
-                U::STORAGE | U::COPY_DST,
-            ),
-            cell_fill: make("cell fill", 4 * (sizes.cells + 1), U::STORAGE | U::COPY_SRC),
-            cell_balls: make("balls by cell", 4 * n, U::STORAGE),
-            slot_other: make("contact partners", 4 * SLOTS * n, U::STORAGE),
-            slot_impulse: make("contact impulses", 16 * HALF_SLOTS * n, U::STORAGE),
-            wall_impulse: make("wall impulses", 16 * 3 * n, U::STORAGE),
-            body_of: make("body of each ball", 4 * n, U::STORAGE),
-            body_impulse: make("body impulses", 16 * n, U::STORAGE),
+            packed,
             bodies: make(
                 "bodies",
                 std::mem::size_of::<Body>() as u64 * sizes.bodies.max(1),
-                U::STORAGE | U::COPY_DST,
+                U::STORAGE,
             ),
-            palette: make("palette", 16 * sizes.colors, U::STORAGE | U::COPY_DST),
-            instances: make(
-                "ball instances",
-                32 * n,
-                U::STORAGE | U::VERTEX | U::COPY_SRC,
-            ),
-            tumbler_push: make(
-                "tumbler pushes",
-                32 * sizes.tumblers.max(1),
-                U::STORAGE | U::COPY_SRC,
-            ),
+            palette: make("palette", 16 * sizes.colors, U::STORAGE),
+            instances: make("ball instances", 32 * sizes.balls, U::STORAGE | U::VERTEX),
+            tumbler_push: make("tumbler pushes", 32 * sizes.tumblers.max(1), U::STORAGE),
             events: make(
                 "catches",
                 std::mem::size_of::<Catch>() as u64 * EVENT_CAPACITY,
-                U::STORAGE | U::COPY_SRC,
-            ),
-            event_count: make("catch count", 16, U::STORAGE | U::COPY_SRC | U::COPY_DST),
-            first_contact: make("what each ball meets first, two copies", 8 * n, U::STORAGE),
-            body_impact: make("impacts' pushes on bodies", 4 * n, U::STORAGE),
-            cell_speed: make("fastest in each cell", 4 * (sizes.cells + 1), U::STORAGE),
-            near_speed: make("fastest near each ball", 4 * n, U::STORAGE),
-            slot_mirror: make("contact mirrors", 4 * SLOTS * n, U::STORAGE),
-            shift: make("shifts out of overlaps, two copies", 32 * n, U::STORAGE),
-            impact_count: make(
-                "balls that meet a contact in each round",
-                4 * u64::from(IMPACT_ROUNDS),
-                U::STORAGE | U::COPY_DST,
-            ),
-            ball_rank: make("place of each ball by cell", 4 * n, U::STORAGE),
-            slot_impulse_more: make(
-                "contact impulses, second half",
-                16 * HALF_SLOTS * n,
                 U::STORAGE,
             ),
+            sections,
+            capacity: sizes.balls,
         }
     }
 
+    /// Section `name`'s buffer and its first byte.
+    pub fn section(&self, name: &str) -> (&wgpu::Buffer, u64) {
+        let &(_, k, first, element) = self
+            .sections
+            .iter()
+            .find(|s| s.0 == name)
+            .unwrap_or_else(|| panic!("no section {name}"));
+        (&self.packed[k], first * element)
+    }
+
+    /// The sections' first elements as WGSL constants, and the balls they
+    /// have room for (`CAPACITY`), to go above the passes' WGSL.
+    pub fn wgsl_sections(&self) -> String {
+        let mut constants = format!("const CAPACITY: u32 = {}u;\n", self.capacity);
+        for (name, _, first, _) in &self.sections {
+            constants += &format!("const {name}: u32 = {first}u;\n");
+        }
+        constants
+    }
+
     /// In binding order.
-    fn in_order(&self) -> [&wgpu::Buffer; BINDINGS as usize] {
-        [
-            &self.params,
-            &self.pos,
-            &self.vel,
-            &self.spin,
-            &self.vel_start,
-            &self.delta,
-            &self.delta_spin,
-            &self.state,
-            &self.cell_of,
-            &self.cell_start,
-            &self.cell_fill,
-            &self.cell_balls,
-            &self.slot_other,
-            &self.slot_impulse,
-            &self.wall_impulse,
-            &self.body_of,
-            &self.body_impulse,
+    fn in_order(&self) -> Vec<&wgpu::Buffer> {
+        let mut order = vec![&self.params];
+        order.extend(&self.packed);
+        order.extend([
             &self.bodies,
             &self.palette,
             &self.instances,
             &self.tumbler_push,
             &self.events,
-            &self.event_count,
-            &self.first_contact,
-            &self.body_impact,
-            &self.cell_speed,
-            &self.near_speed,
-            &self.slot_mirror,
-            &self.shift,
-            &self.impact_count,
-            &self.ball_rank,
-            &self.slot_impulse_more,
-        ]
+        ]);
+        order
     }
 
     /// Every buffer but the step's constants (which the CPU writes before
@@ -219,45 +305,8 @@ impl Buffers {
         self.in_order().into_iter().skip(1)
     }
 
-    /// The layout: binding 0 the uniform, 17 and 18 read-only, the rest
-    /// read and written.
-    pub fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-        let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..BINDINGS)
-            .map(|binding| {
-                compute_buffer(
-                    binding,
-                    match binding {
-                        0 => wgpu::BufferBindingType::Uniform,
-                        17 | 18 => wgpu::BufferBindingType::Storage { read_only: true },
-                        _ => READ_WRITE,
-                    },
-                )
-            })
-            .collect();
-        device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("balls"),
-            entries: &entries,
-        })
-    }
-
-    pub fn bind_group(
-        &self,
-        device: &wgpu::Device,
-        layout: &wgpu::BindGroupLayout,
-    ) -> wgpu::BindGroup {
-        let entries: Vec<wgpu::BindGroupEntry> = self
-            .in_order()
-            .iter()
-            .enumerate()
-            .map(|(binding, buffer)| wgpu::BindGroupEntry {
-                binding: binding as u32,
-                resource: buffer.as_entire_binding(),
-            })
-            .collect();
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("balls"),
-            layout,
-            entries: &entries,
-        })
+    /// The buffer at `binding` in `common.wgsl`.
+    pub fn at(&self, binding: u32) -> &wgpu::Buffer {
+        self.in_order()[binding as usize]
     }
 }

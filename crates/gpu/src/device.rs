@@ -3,8 +3,10 @@
 
 use crate::GpuError;
 
-/// Storage buffers the ball passes bind at once (see `bindings.rs`).
-pub const STORAGE_BUFFERS: u32 = crate::bindings::BINDINGS - 1;
+/// The most storage buffers any of the ball passes binds: WebGPU's
+/// default, which every WebGPU adapter has (see `bindings.rs`; the
+/// limits test holds every pipeline to it).
+pub const STORAGE_BUFFERS: u32 = 8;
 
 /// An open device, its queue and the adapter's name.
 pub struct Compute {
@@ -16,15 +18,19 @@ pub struct Compute {
     pub adapter: String,
 }
 
-/// The limits to ask of `adapter` for the ball engine: the adapter's own for
-/// storage and compute, the portable defaults (at the adapter's texture
-/// sizes) for the rest, so that a renderer opening the device may draw too.
+/// The limits to ask of `adapter` for the ball engine: what the engine
+/// needs (no more than the adapter has: the engine checks the rest and
+/// says what is missing), the adapter's own for the sizes a scene decides,
+/// the portable defaults (at the adapter's texture sizes) for the rest, so
+/// that a renderer opening the device may draw too. A device asked for no
+/// more than the engine needs refuses any pass that would bind more.
 pub fn limits(adapter: &wgpu::Adapter) -> wgpu::Limits {
     let has = adapter.limits();
     let mut limits = wgpu::Limits::downlevel_defaults().using_resolution(has.clone());
-    limits.max_storage_buffers_per_shader_stage = has.max_storage_buffers_per_shader_stage;
+    limits.max_storage_buffers_per_shader_stage =
+        STORAGE_BUFFERS.min(has.max_storage_buffers_per_shader_stage);
     limits.max_buffers_and_acceleration_structures_per_shader_stage =
-        has.max_buffers_and_acceleration_structures_per_shader_stage;
+        (STORAGE_BUFFERS + 1).min(has.max_buffers_and_acceleration_structures_per_shader_stage);
     limits.max_storage_buffer_binding_size = has.max_storage_buffer_binding_size;
     limits.max_buffer_size = has.max_buffer_size;
     limits.max_compute_workgroup_storage_size = has.max_compute_workgroup_storage_size;

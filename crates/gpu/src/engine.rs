@@ -7,7 +7,7 @@ use crate::device::describe;
 use crate::layout::{Body, Catch, EVENT_CAPACITY, FIREBALL, IMPACT_ROUNDS, Params, grid_cells};
 use crate::profile::StageTimer;
 use crate::readback::read_buffer;
-use crate::step::{Stages, SweepCounts};
+use crate::step::{PassLayout, Stages, SweepCounts};
 use crate::wait::WaitBound;
 use glam::{DVec3, Vec3};
 use rolypoly_physics::{Balls, Event, EventKind, Tint, World};
@@ -81,7 +81,6 @@ pub struct GpuBalls {
     /// How long any wait on the device may last, and its adapter's name.
     wait: WaitBound,
     buffers: Buffers,
-    bind_group: wgpu::BindGroup,
     stages: Stages,
     params: Params,
     /// Balls the buffers hold room for.
@@ -161,14 +160,12 @@ impl GpuBalls {
         };
         check_limits(&device.limits(), &sizes, &adapter)?;
 
-        let layout = Buffers::layout(&device);
         let buffers = Buffers::new(&device, &sizes);
-        let bind_group = buffers.bind_group(&device, &layout);
         let sweeps = SweepCounts {
             dispatches: SOLVE_DISPATCHES_PER_ITERATION * config.solver.iterations.max(1) as u32,
             block_sweeps: SOLVE_SWEEPS_PER_DISPATCH,
         };
-        let stages = Stages::new(&device, &buffers, &layout, cells, &sweeps);
+        let stages = Stages::new(&device, &buffers, cells, &sweeps);
 
         let palette_layout = PaletteLayout {
             tumblers: 7,
@@ -244,7 +241,6 @@ impl GpuBalls {
             queue,
             wait: WaitBound::new(adapter),
             buffers,
-            bind_group,
             stages,
             params,
             capacity,
@@ -303,7 +299,7 @@ impl GpuBalls {
     /// it waits for the GPU.
     pub fn impact_counts(&self) -> Result<[u32; IMPACT_ROUNDS as usize], GpuError> {
         let bytes = self.copy_back(
-            &self.buffers.impact_count,
+            self.buffers.section("IMPACT_COUNT"),
             4 * u64::from(IMPACT_ROUNDS),
             || format!("the gpu engine's step {} (its impact counts)", self.steps),
         )?;
@@ -335,11 +331,10 @@ impl GpuBalls {
             let color = self.palette_layout.index(balls.tints()[i]);
             state.push(u32::from(balls.alive()[i]) | (color << 16));
         }
-        let q = &self.queue;
-        q.write_buffer(&self.buffers.pos, 16 * first, bytemuck::cast_slice(&pos));
-        q.write_buffer(&self.buffers.vel, 16 * first, bytemuck::cast_slice(&vel));
-        q.write_buffer(&self.buffers.spin, 16 * first, bytemuck::cast_slice(&spin));
-        q.write_buffer(&self.buffers.state, 4 * first, bytemuck::cast_slice(&state));
+        self.write_section("POS", 16 * first, bytemuck::cast_slice(&pos));
+        self.write_section("VEL", 16 * first, bytemuck::cast_slice(&vel));
+        self.write_section("SPIN", 16 * first, bytemuck::cast_slice(&spin));
+        self.write_section("STATE", 4 * first, bytemuck::cast_slice(&state));
     }
 
     /// Moves ball `ball` to `position` at `velocity`, keeping its spin,
@@ -358,9 +353,8 @@ impl GpuBalls {
         }
         let xyz = |v: DVec3| v.as_vec3().to_array();
         let at = 16 * ball as u64;
-        let q = &self.queue;
-        q.write_buffer(&self.buffers.pos, at, bytemuck::cast_slice(&xyz(position)));
-        q.write_buffer(&self.buffers.vel, at, bytemuck::cast_slice(&xyz(velocity)));
+        self.write_section("POS", at, bytemuck::cast_slice(&xyz(position)));
+        self.write_section("VEL", at, bytemuck::cast_slice(&xyz(velocity)));
         self.write_instances();
         Ok(())
     }
@@ -463,21 +457,21 @@ impl GpuBalls {
         }
         q.write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&self.params));
         if catching {
-            q.write_buffer(&self.buffers.event_count, 0, &[0; 4]);
+            self.write_section("EVENT_COUNT", 0, &[0; 4]);
         }
-        q.write_buffer(
-            &self.buffers.impact_count,
+        self.write_section(
+            "IMPACT_COUNT",
             0,
             bytemuck::cast_slice(&[0u32; IMPACT_ROUNDS as usize]),
         );
         let mut encoder = self.device.create_command_encoder(&Default::default());
         self.dispatches = self.stages.record(
             &mut encoder,
-            &self.bind_group,
             timer,
             u64::from(self.params.count),
             self.tumblers as u32,
             self.params.count <= self.small_world_balls,
+            catching,
         );
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
@@ -486,7 +480,8 @@ impl GpuBalls {
         if report {
             let push = 32 * self.tumblers as u64;
             encoder.copy_buffer_to_buffer(&self.buffers.tumbler_push, 0, &self.report, 0, push);
-            encoder.copy_buffer_to_buffer(&self.buffers.event_count, 0, &self.report, push, 16);
+            let (counters, event_count) = self.buffers.section("EVENT_COUNT");
+            encoder.copy_buffer_to_buffer(counters, event_count, &self.report, push, 16);
             encoder.copy_buffer_to_buffer(
                 &self.buffers.events,
                 0,
@@ -528,6 +523,11 @@ impl GpuBalls {
         Ok(Some(sum.map(|s| s / f64::from(steps.max(1)))))
     }
 
+    /// What each of the engine's pipelines binds, an entry point a row.
+    pub fn pass_layouts(&self) -> &[PassLayout] {
+        self.stages.layouts()
+    }
+
     /// Sweeps worlds of up to `balls` balls in one workgroup from now on
     /// (normally up to 1024), so that tests and the bench can hold the two
     /// ways of sweeping against each other.
@@ -550,7 +550,7 @@ impl GpuBalls {
             .write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&self.params));
         let mut encoder = self.device.create_command_encoder(&Default::default());
         self.stages
-            .write_instances(&mut encoder, &self.bind_group, u64::from(self.params.count));
+            .write_instances(&mut encoder, u64::from(self.params.count));
         self.queue.submit([encoder.finish()]);
     }
 
@@ -606,13 +606,14 @@ impl GpuBalls {
     /// GPU is done with what was submitted before; `what` names the wait.
     fn copy_back(
         &self,
-        buffer: &wgpu::Buffer,
+        (buffer, offset): (&wgpu::Buffer, u64),
         size: u64,
         what: impl FnOnce() -> String,
     ) -> Result<Vec<u8>, GpuError> {
-        let size = size.min(buffer.size());
+        let room = buffer.size() - offset;
+        let size = size.min(room);
         // Buffers are at least 16 bytes; so is what is copied.
-        let copied = size.max(16).min(buffer.size());
+        let copied = size.max(16).min(room);
         let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("read back"),
             size: copied,
@@ -620,9 +621,16 @@ impl GpuBalls {
             mapped_at_creation: false,
         });
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, copied);
+        encoder.copy_buffer_to_buffer(buffer, offset, &staging, 0, copied);
         self.queue.submit([encoder.finish()]);
         read_buffer(&self.device, &self.wait, &staging, size as usize, what)
+    }
+
+    /// Writes `bytes` into section `name` of the packed buffers, from its
+    /// byte `at` on.
+    fn write_section(&self, name: &str, at: u64, bytes: &[u8]) {
+        let (buffer, first) = self.buffers.section(name);
+        self.queue.write_buffer(buffer, first + at, bytes);
     }
 
     /// The balls the fireball caught since the last call, as events.
@@ -634,7 +642,7 @@ impl GpuBalls {
     /// the window never needs to).
     pub fn read(&self) -> Result<BallState, GpuError> {
         let n = u64::from(self.params.count);
-        let copy = |buffer: &wgpu::Buffer, size: u64| {
+        let copy = |buffer: (&wgpu::Buffer, u64), size: u64| {
             self.copy_back(buffer, size, || {
                 format!(
                     "reading the gpu engine's balls back after step {}",
@@ -642,10 +650,10 @@ impl GpuBalls {
                 )
             })
         };
-        let pos = copy(&self.buffers.pos, 16 * n)?;
-        let vel = copy(&self.buffers.vel, 16 * n)?;
-        let spin = copy(&self.buffers.spin, 16 * n)?;
-        let state = copy(&self.buffers.state, 4 * n)?;
+        let pos = copy(self.buffers.section("POS"), 16 * n)?;
+        let vel = copy(self.buffers.section("VEL"), 16 * n)?;
+        let spin = copy(self.buffers.section("SPIN"), 16 * n)?;
+        let state = copy(self.buffers.section("STATE"), 4 * n)?;
         let pos: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&pos);
         let vel: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&vel);
         let spin: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&spin);

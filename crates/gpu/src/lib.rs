@@ -53,6 +53,7 @@ pub use device::{Compute, best_adapter, check_compute, describe, limits};
 pub use engine::{BallState, GpuBalls, GpuSnapshot, THROW_ROOM};
 pub use error::GpuError;
 pub use profile::{STAGES, Stage};
+pub use step::PassLayout;
 pub use wait::{
     DEFAULT_GPU_TIMEOUT, GpuTimeout, WaitBound, WaitError, program_gpu_timeout,
     set_program_gpu_timeout,

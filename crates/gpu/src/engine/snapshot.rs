@@ -79,7 +79,7 @@ impl GpuBalls {
             .buffers
             .stored()
             .map(|buffer| {
-                self.copy_back(buffer, buffer.size(), || {
+                self.copy_back((buffer, 0), buffer.size(), || {
                     format!("copying the gpu engine's state back after step {steps}")
                 })
             })

@@ -1,5 +1,6 @@
-// What every ball pass shares: the step's constants and the buffers, all
-// in one bind group (see `bindings.rs`, which lists them in this order).
+// What every ball pass shares: the step's constants and the buffers (see
+// `bindings.rs`, which lists them in this order). Each pass binds only
+// those its entry point uses.
 
 const WORKGROUP: u32 = 256u;
 // A world of few balls runs each sweeping stage (the impacts, the solver)
@@ -83,69 +84,80 @@ struct Event {
 }
 
 @group(0) @binding(0) var<uniform> params: Params;
-// Centre, radius.
-@group(0) @binding(1) var<storage, read_write> pos: array<vec4<f32>>;
-// Velocity, inverse mass.
-@group(0) @binding(2) var<storage, read_write> vel: array<vec4<f32>>;
-// Angular velocity.
-@group(0) @binding(3) var<storage, read_write> spin: array<vec4<f32>>;
-// The velocity at the start of the step.
-@group(0) @binding(4) var<storage, read_write> vel_start: array<vec4<f32>>;
-// The second copy of the velocities, then of the spins, that the Jacobi
-// sweeps alternate with (see `vel_in`).
-@group(0) @binding(5) var<storage, read_write> delta: array<vec4<f32>>;
-@group(0) @binding(6) var<storage, read_write> delta_spin: array<vec4<f32>>;
-// See ALIVE, SOLVED.
-@group(0) @binding(7) var<storage, read_write> state: array<u32>;
-// The grid: each ball's cell, each cell's first place in `cell_balls`
-// (one past the end: the count), each cell's balls not yet placed (zero
-// between steps), the balls by cell.
-@group(0) @binding(8) var<storage, read_write> cell_of: array<u32>;
-@group(0) @binding(9) var<storage, read_write> cell_start: array<u32>;
-@group(0) @binding(10) var<storage, read_write> cell_fill: array<atomic<u32>>;
-@group(0) @binding(11) var<storage, read_write> cell_balls: array<u32>;
-// Each ball's contacts with other balls: the other's number, and the
-// impulse so far (friction xyz, normal w). SLOTS a ball; the impulses in
-// two halves (see `impulse_at`).
-@group(0) @binding(12) var<storage, read_write> slot_other: array<u32>;
-@group(0) @binding(13) var<storage, read_write> slot_impulse: array<vec4<f32>>;
-// Each ball's contacts with the room's nearest wall on each axis.
-@group(0) @binding(14) var<storage, read_write> wall_impulse: array<vec4<f32>>;
-// Each ball's contact with a body (or NONE), and its impulses: x the
-// impacts', w the resting contact's.
-@group(0) @binding(15) var<storage, read_write> body_of: array<u32>;
-@group(0) @binding(16) var<storage, read_write> body_impulse: array<vec4<f32>>;
-@group(0) @binding(17) var<storage, read> bodies: array<Body>;
-@group(0) @binding(18) var<storage, read> palette: array<vec4<f32>>;
+// Arrays of one type share a buffer, section after section, each section
+// named by a constant giving its first element, written above this file
+// from `bindings.rs` (as is CAPACITY, the balls a section has room for):
+// `motion[VEL + i]` is ball i's velocity. WebGPU promises a shader stage
+// only 8 storage buffers.
+//
+// The balls' motion: POS centre and radius; VEL velocity and inverse mass;
+// SPIN angular velocity; VEL_START the velocity at the start of the step;
+// DELTA and DELTA_SPIN the second copy of the velocities and spins that
+// the Jacobi sweeps alternate with (see `vel_in`).
+@group(0) @binding(1) var<storage, read_write> motion: array<vec4<f32>>;
+// What the solver adds up for each ball: WALL_IMPULSE its contacts with
+// the room's nearest wall on each axis (three a ball); BODY_IMPULSE its
+// contact with a body (x the impacts', w the resting contact's); SHIFT how
+// far the solver moves it out of its overlaps this step, by position
+// alone (see solve.wgsl): two copies, one after the other, that its sweeps
+// alternate between as they do the velocities (see `shift_place`).
+@group(0) @binding(2) var<storage, read_write> pushes: array<vec4<f32>>;
+// Each ball's contacts' impulses so far (friction xyz, normal w), SLOTS a
+// ball in two halves (see `impulse_at`).
+@group(0) @binding(3) var<storage, read_write> slot_impulse: array<vec4<f32>>;
+@group(0) @binding(4) var<storage, read_write> slot_impulse_more: array<vec4<f32>>;
+// A word or two for each ball: STATE (see ALIVE, SOLVED); CELL_OF its
+// cell; BODY_OF the body it touches (or NONE); BALL_RANK its place in
+// CELL_BALLS, the balls by cell (see `ball_at`); FIRST_CONTACT what it
+// meets first in an impact round (see `FIRST_WALL`; two copies, see
+// `first_place`); BODY_IMPACT its impacts' push on its body this step and
+// NEAR_SPEED the speed of the fastest ball in the 27 cells around it, both
+// f32 bits (see `body_impact_of`, `near_speed_of`).
+@group(0) @binding(5) var<storage, read_write> ball_words: array<u32>;
+// Each ball's contacts with other balls, SLOTS a ball: SLOT_OTHER the other
+// ball, SLOT_MIRROR where the other keeps the same contact, or NONE (see
+// `note_mirrors` in impacts.wgsl).
+@group(0) @binding(6) var<storage, read_write> slot_words: array<u32>;
+// A word for each cell and one past the last: CELL_START its first place
+// in CELL_BALLS (one past the end: the count); CELL_SPEED the speed of its
+// fastest ball, as f32 bits (see `cell_speed_of`).
+@group(0) @binding(7) var<storage, read_write> cell_words: array<u32>;
+// What threads count together: CELL_FILL each cell's balls not yet placed
+// (zero between steps), EVENT_COUNT the catches, IMPACT_COUNT how many
+// balls meet a contact in each impact round (see impacts.wgsl).
+@group(0) @binding(8) var<storage, read_write> counters: array<atomic<u32>>;
+@group(0) @binding(9) var<storage, read> bodies: array<Body>;
+@group(0) @binding(10) var<storage, read> palette: array<vec4<f32>>;
 // What the renderer draws: centre and radius, colour (see `BallInstance`).
-@group(0) @binding(19) var<storage, read_write> instances: array<vec4<f32>>;
+@group(0) @binding(11) var<storage, read_write> instances: array<vec4<f32>>;
 // Each tumbler's push from the balls: impulse (w: the pushing balls' mass),
 // then moment about its origin.
-@group(0) @binding(20) var<storage, read_write> tumbler_push: array<vec4<f32>>;
-@group(0) @binding(21) var<storage, read_write> events: array<Event>;
-@group(0) @binding(22) var<storage, read_write> event_count: atomic<u32>;
-// The impacts (see impacts.wgsl): what each ball meets first in the
-// round (see `FIRST_WALL`; two copies, see `first_place`), and its
-// impacts' push on its body this step.
-@group(0) @binding(23) var<storage, read_write> first_contact: array<u32>;
-@group(0) @binding(24) var<storage, read_write> body_impact: array<f32>;
-// The speed of the fastest ball in each cell, and of the fastest ball in
-// the 27 cells around each ball.
-@group(0) @binding(25) var<storage, read_write> cell_speed: array<f32>;
-@group(0) @binding(26) var<storage, read_write> near_speed: array<f32>;
-// For each contact slot, where its other ball keeps the same contact, or
-// NONE (see `note_mirrors` in impacts.wgsl).
-@group(0) @binding(27) var<storage, read_write> slot_mirror: array<u32>;
-// How far the solver moves each ball out of its overlaps this step, by
-// position alone (see solve.wgsl): two copies, one after the other, that
-// its sweeps alternate between as they do the velocities (see `vel_in`).
-@group(0) @binding(28) var<storage, read_write> shift: array<vec4<f32>>;
-// How many balls meet a contact in each impact round (see impacts.wgsl).
-@group(0) @binding(29) var<storage, read_write> impact_count: array<atomic<u32>>;
-// Each ball's place in `cell_balls` (see `ball_at`).
-@group(0) @binding(30) var<storage, read_write> ball_rank: array<u32>;
-// The second half of each ball's contacts' impulses (see `impulse_at`).
-@group(0) @binding(31) var<storage, read_write> slot_impulse_more: array<vec4<f32>>;
+@group(0) @binding(12) var<storage, read_write> tumbler_push: array<vec4<f32>>;
+@group(0) @binding(13) var<storage, read_write> events: array<Event>;
+
+fn body_impact_of(i: u32) -> f32 {
+    return bitcast<f32>(ball_words[BODY_IMPACT + i]);
+}
+
+fn set_body_impact(i: u32, push: f32) {
+    ball_words[BODY_IMPACT + i] = bitcast<u32>(push);
+}
+
+fn near_speed_of(i: u32) -> f32 {
+    return bitcast<f32>(ball_words[NEAR_SPEED + i]);
+}
+
+fn set_near_speed(i: u32, speed: f32) {
+    ball_words[NEAR_SPEED + i] = bitcast<u32>(speed);
+}
+
+fn cell_speed_of(c: u32) -> f32 {
+    return bitcast<f32>(cell_words[CELL_SPEED + c]);
+}
+
+fn set_cell_speed(c: u32, speed: f32) {
+    cell_words[CELL_SPEED + c] = bitcast<u32>(speed);
+}
 
 // The impulse so far of contact slot `at` (ball at / SLOTS, its slot
 // at % SLOTS). A ball's first SLOTS / 2 slots are kept in one buffer and
@@ -187,8 +199,8 @@ fn impact_time(approach: f32, gap: f32) -> f32 {
 
 // The normal (from b to a) and gap of two balls.
 fn pair_geometry(a: u32, b: u32) -> vec4<f32> {
-    let d = pos[a].xyz - pos[b].xyz;
-    return vec4<f32>(direction(d), length(d) - pos[a].w - pos[b].w);
+    let d = motion[POS + a].xyz - motion[POS + b].xyz;
+    return vec4<f32>(direction(d), length(d) - motion[POS + a].w - motion[POS + b].w);
 }
 
 fn ball_index(id: vec3<u32>) -> u32 {
@@ -197,12 +209,12 @@ fn ball_index(id: vec3<u32>) -> u32 {
 }
 
 fn alive(i: u32) -> bool {
-    return (state[i] & ALIVE) != 0u;
+    return (ball_words[STATE + i] & ALIVE) != 0u;
 }
 
 // Whether ball `i` is one in play that the solver works on this step.
 fn in_solver(i: u32) -> bool {
-    return i < params.count && (state[i] & (ALIVE | SOLVED)) == (ALIVE | SOLVED);
+    return i < params.count && (ball_words[STATE + i] & (ALIVE | SOLVED)) == (ALIVE | SOLVED);
 }
 
 fn dt() -> f32 {
@@ -285,7 +297,7 @@ fn surface_of(n: vec3<f32>) -> u32 {
 }
 
 fn set_color(i: u32, palette_index: u32) {
-    state[i] = (state[i] & 0xffffu) | (palette_index << COLOR_SHIFT);
+    ball_words[STATE + i] = (ball_words[STATE + i] & 0xffffu) | (palette_index << COLOR_SHIFT);
 }
 
 fn slot_count(s: u32) -> u32 {
@@ -317,8 +329,8 @@ fn body_point_velocity(b: Body, point: vec3<f32>) -> vec3<f32> {
 // Adds the impacts' push on the ball's body to the step's (kept in
 // `body_impulse.x`, for the tumblers' pushes).
 fn fold_body_impact(i: u32) {
-    body_impulse[i].x += body_impact[i];
-    body_impact[i] = 0.0;
+    pushes[BODY_IMPULSE + i].x += body_impact_of(i);
+    set_body_impact(i, 0.0);
 }
 
 // A stage's Jacobi sweeps alternate between two copies of what they
@@ -331,45 +343,45 @@ fn fold_body_impact(i: u32) {
 // sweep an even number of times, so that they end in the first copy.
 fn vel_in(i: u32, back: bool) -> vec4<f32> {
     if back {
-        return delta[i];
+        return motion[DELTA + i];
     }
-    return vel[i];
+    return motion[VEL + i];
 }
 
 fn spin_in(i: u32, back: bool) -> vec4<f32> {
     if back {
-        return delta_spin[i];
+        return motion[DELTA_SPIN + i];
     }
-    return spin[i];
+    return motion[SPIN + i];
 }
 
 fn shift_in(i: u32, back: bool) -> vec4<f32> {
-    return shift[shift_place(i, back)];
+    return pushes[SHIFT + shift_place(i, back)];
 }
 
 // Where ball i's shift is kept in the copy a sweep `back` reads.
 fn shift_place(i: u32, back: bool) -> u32 {
-    return select(i, arrayLength(&shift) / 2u + i, back);
+    return select(i, CAPACITY + i, back);
 }
 
 fn put_vel(i: u32, back: bool, v: vec4<f32>) {
     if back {
-        vel[i] = v;
+        motion[VEL + i] = v;
     } else {
-        delta[i] = v;
+        motion[DELTA + i] = v;
     }
 }
 
 fn put_spin(i: u32, back: bool, w: vec4<f32>) {
     if back {
-        spin[i] = w;
+        motion[SPIN + i] = w;
     } else {
-        delta_spin[i] = w;
+        motion[DELTA_SPIN + i] = w;
     }
 }
 
 fn put_shift(i: u32, back: bool, s: vec4<f32>) {
-    shift[shift_place(i, !back)] = s;
+    pushes[SHIFT + shift_place(i, !back)] = s;
 }
 
 // Balls in a block: a workgroup's sweeps in a dispatch work on the balls
@@ -386,8 +398,8 @@ fn block_index(group: vec3<u32>) -> u32 {
 
 // The ball at `place` in cell order, or NONE past the balls in play.
 fn ball_at(place: u32) -> u32 {
-    if place < cell_start[params.cells] {
-        return cell_balls[place];
+    if place < cell_words[CELL_START + params.cells] {
+        return ball_words[CELL_BALLS + place];
     }
     return NONE;
 }
@@ -404,7 +416,7 @@ fn ball_in_block(g: u32, t: u32, start: u32) -> u32 {
 // Where ball `j` is kept in block `g`'s workgroup memory, or NONE if it
 // is another block's, the blocks starting at `start`.
 fn place_in_block(j: u32, g: u32, start: u32) -> u32 {
-    let place = ball_rank[j] + start;
+    let place = ball_words[BALL_RANK + j] + start;
     if place / WORKGROUP == g {
         return place % WORKGROUP;
     }

@@ -3,12 +3,12 @@
 //! the walls; each from where the solver shifted it. The same pass writes
 //! what the renderer draws.
 
-use super::{Recorder, Shaders};
+use super::{Kernel, Recorder, Shaders};
 use crate::profile::Stage;
 
 pub struct Flight {
-    fly: wgpu::ComputePipeline,
-    write_instances: wgpu::ComputePipeline,
+    fly: Kernel,
+    write_instances: Kernel,
 }
 
 impl Flight {

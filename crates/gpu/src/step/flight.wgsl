@@ -96,26 +96,26 @@ fn put_instance(i: u32) {
         instances[2u * i + 1u] = vec4<f32>(0.0);
         return;
     }
-    instances[2u * i] = pos[i];
-    instances[2u * i + 1u] = vec4<f32>(palette[state[i] >> COLOR_SHIFT].xyz, 0.0);
+    instances[2u * i] = motion[POS + i];
+    instances[2u * i + 1u] = vec4<f32>(palette[ball_words[STATE + i] >> COLOR_SHIFT].xyz, 0.0);
 }
 
 fn move_ball(i: u32) {
-    let r = pos[i].w;
-    let im = vel[i].w;
+    let r = motion[POS + i].w;
+    let im = motion[VEL + i].w;
     let step = dt();
     let events_above = params.grid.w;
-    var u = vel_start[i].xyz;
-    var w = spin[i].xyz;
-    let start = pos[i].xyz + shift_in(i, false).xyz;
-    if (state[i] & SOLVED) != 0u {
-        var v = vel[i].xyz;
+    var u = motion[VEL_START + i].xyz;
+    var w = motion[SPIN + i].xyz;
+    let start = motion[POS + i].xyz + shift_in(i, false).xyz;
+    if (ball_words[STATE + i] & SOLVED) != 0u {
+        var v = motion[VEL + i].xyz;
         for (var axis = 0u; axis < 3u; axis++) {
-            let pushed = wall_impulse[i * 3u + axis].w;
-            if !touches_wall(state[i], axis) || pushed <= 0.0 {
+            let pushed = pushes[WALL_IMPULSE + i * 3u + axis].w;
+            if !touches_wall(ball_words[STATE + i], axis) || pushed <= 0.0 {
                 continue;
             }
-            let wall = nearest_wall(pos[i].xyz, r, axis);
+            let wall = nearest_wall(motion[POS + i].xyz, r, axis);
             let n = wall.xyz;
             let tangential = v - dot(v, n) * n;
             let speed = length(tangential);
@@ -123,28 +123,28 @@ fn move_ball(i: u32) {
             let keep = select(0.0, 1.0 - loss / speed, speed > loss);
             v = dot(v, n) * n + tangential * keep;
             w *= keep;
-            if -dot(vel_start[i].xyz, n) > events_above {
+            if -dot(motion[VEL_START + i].xyz, n) > events_above {
                 set_color(i, params.surface_colors + surface_of(n));
             }
         }
-        let b = body_of[i];
-        if b != NONE && body_impulse[i].w > 0.0 && bodies[b].info.x != FIREBALL {
-            let n = direction(pos[i].xyz - bodies[b].sphere.xyz);
-            if -dot(vel_start[i].xyz, n) > events_above {
+        let b = ball_words[BODY_OF + i];
+        if b != NONE && pushes[BODY_IMPULSE + i].w > 0.0 && bodies[b].info.x != FIREBALL {
+            let n = direction(motion[POS + i].xyz - bodies[b].sphere.xyz);
+            if -dot(motion[VEL_START + i].xyz, n) > events_above {
                 set_color(i, bodies[b].info.z);
             }
         }
-        var held = body_impulse[i].w > 0.0;
-        for (var k = 0u; k < slot_count(state[i]); k++) {
+        var held = pushes[BODY_IMPULSE + i].w > 0.0;
+        for (var k = 0u; k < slot_count(ball_words[STATE + i]); k++) {
             held = held || impulse_at(i * SLOTS + k).w > 0.0;
         }
         for (var axis = 0u; axis < 3u; axis++) {
-            held = held || (touches_wall(state[i], axis) && wall_impulse[i * 3u + axis].w > 0.0);
+            held = held || (touches_wall(ball_words[STATE + i], axis) && pushes[WALL_IMPULSE + i * 3u + axis].w > 0.0);
         }
         if held {
-            pos[i] = vec4<f32>(clamp_into_room(start + v * step, r), r);
-            vel[i] = vec4<f32>(v, im);
-            spin[i] = vec4<f32>(w, 0.0);
+            motion[POS + i] = vec4<f32>(clamp_into_room(start + v * step, r), r);
+            motion[VEL + i] = vec4<f32>(v, im);
+            motion[SPIN + i] = vec4<f32>(w, 0.0);
             return;
         }
         // No contact pushed it in the solve: it met its neighbours only in
@@ -220,7 +220,7 @@ fn move_ball(i: u32) {
             set_color(i, params.surface_colors + hit);
         }
     }
-    pos[i] = vec4<f32>(clamp_into_room(x, r), r);
-    vel[i] = vec4<f32>(u, im);
-    spin[i] = vec4<f32>(w, 0.0);
+    motion[POS + i] = vec4<f32>(clamp_into_room(x, r), r);
+    motion[VEL + i] = vec4<f32>(u, im);
+    motion[SPIN + i] = vec4<f32>(w, 0.0);
 }

@@ -5,14 +5,14 @@
 //! lists in the same order whatever order the atomics landed in.
 
 use super::scan::Scan;
-use super::{Recorder, Shaders, Stamps};
+use super::{Kernel, Recorder, Shaders, Stamps};
 use crate::bindings::Buffers;
 use crate::profile::Stage;
 
 pub struct Grid {
-    count_cells: wgpu::ComputePipeline,
-    place_in_cells: wgpu::ComputePipeline,
-    sort_cells: wgpu::ComputePipeline,
+    count_cells: Kernel,
+    place_in_cells: Kernel,
+    sort_cells: Kernel,
     scan: Scan,
     cells: u64,
     /// The counts, and the buffer they are scanned in.
@@ -23,15 +23,22 @@ pub struct Grid {
 impl Grid {
     pub fn new(shaders: &Shaders, buffers: &Buffers, cells: u64) -> Grid {
         let module = shaders.module("grid", &[], include_str!("grid.wgsl"));
+        // The counts are copied to, and scanned in, the start of a buffer.
+        assert!(buffers.section("CELL_FILL").1 == 0 && buffers.section("CELL_START").1 == 0);
         Grid {
             count_cells: shaders.pipeline(&module, "count_cells"),
             place_in_cells: shaders.pipeline(&module, "place_in_cells"),
             sort_cells: shaders.pipeline(&module, "sort_cells"),
-            scan: Scan::new(shaders.device, &buffers.cell_start, cells + 1),
+            scan: Scan::new(shaders.device, buffers.section("CELL_START").0, cells + 1),
             cells,
-            cell_fill: buffers.cell_fill.clone(),
-            cell_start: buffers.cell_start.clone(),
+            cell_fill: buffers.section("CELL_FILL").0.clone(),
+            cell_start: buffers.section("CELL_START").0.clone(),
         }
+    }
+
+    /// What the scan's pipelines bind.
+    pub fn scan_layouts(&self) -> Vec<super::PassLayout> {
+        self.scan.layouts()
     }
 
     /// Two passes around the scan; the stage's stamps span all three parts.

@@ -10,22 +10,22 @@ fn count_cells(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     if !alive(i) {
-        cell_of[i] = NONE;
+        ball_words[CELL_OF + i] = NONE;
         return;
     }
-    let c = cell_id(cell_coords(pos[i].xyz));
-    cell_of[i] = c;
-    atomicAdd(&cell_fill[c], 1u);
+    let c = cell_id(cell_coords(motion[POS + i].xyz));
+    ball_words[CELL_OF + i] = c;
+    atomicAdd(&counters[CELL_FILL + c], 1u);
 }
 
 @compute @workgroup_size(256)
 fn place_in_cells(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count || cell_of[i] == NONE {
+    if i >= params.count || ball_words[CELL_OF + i] == NONE {
         return;
     }
-    let c = cell_of[i];
-    cell_balls[cell_start[c] + atomicSub(&cell_fill[c], 1u) - 1u] = i;
+    let c = ball_words[CELL_OF + i];
+    ball_words[CELL_BALLS + cell_words[CELL_START + c] + atomicSub(&counters[CELL_FILL + c], 1u) - 1u] = i;
 }
 
 // Each cell's list sorted, each ball's place in the order noted, and the
@@ -36,22 +36,22 @@ fn sort_cells(@builtin(global_invocation_id) id: vec3<u32>) {
     if c >= params.cells {
         return;
     }
-    let first = cell_start[c];
-    let end = cell_start[c + 1u];
+    let first = cell_words[CELL_START + c];
+    let end = cell_words[CELL_START + c + 1u];
     for (var k = first + 1u; k < end; k++) {
-        let ball = cell_balls[k];
+        let ball = ball_words[CELL_BALLS + k];
         var m = k;
-        while m > first && cell_balls[m - 1u] > ball {
-            cell_balls[m] = cell_balls[m - 1u];
+        while m > first && ball_words[CELL_BALLS + m - 1u] > ball {
+            ball_words[CELL_BALLS + m] = ball_words[CELL_BALLS + m - 1u];
             m--;
         }
-        cell_balls[m] = ball;
+        ball_words[CELL_BALLS + m] = ball;
     }
     var fastest = 0.0;
     for (var k = first; k < end; k++) {
-        let ball = cell_balls[k];
-        ball_rank[ball] = k;
-        fastest = max(fastest, length(vel[ball].xyz));
+        let ball = ball_words[CELL_BALLS + k];
+        ball_words[BALL_RANK + ball] = k;
+        fastest = max(fastest, length(motion[VEL + ball].xyz));
     }
-    cell_speed[c] = fastest;
+    set_cell_speed(c, fastest);
 }

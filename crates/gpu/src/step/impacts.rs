@@ -6,15 +6,15 @@
 //! as they do, rather than waiting for another dispatch to write them.
 //! The last also gives the solver its start (`warm_start.wgsl`).
 
-use super::{Recorder, Shaders};
+use super::{Kernel, Recorder, Shaders};
 use crate::layout::IMPACT_ROUNDS;
 use crate::profile::Stage;
 
 pub struct Impacts {
     /// The dispatch that starts each round, and last the one that ends
     /// the last round.
-    meet: Vec<wgpu::ComputePipeline>,
-    in_one_group: wgpu::ComputePipeline,
+    meet: Vec<Kernel>,
+    in_one_group: Kernel,
 }
 
 impl Impacts {
@@ -30,8 +30,7 @@ impl Impacts {
         Impacts {
             meet: (0..=IMPACT_ROUNDS)
                 .map(|round| {
-                    shaders.pipeline_in(
-                        &shaders.layout,
+                    shaders.pipeline_with(
                         &module,
                         "meet_in_round",
                         &[("IMPACT_ROUND", f64::from(round))],

@@ -68,11 +68,11 @@ fn meet(i: u32, round: u32) {
     var v: vec4<f32>;
     if round == 0u {
         note_mirrors(i);
-        v = vel[i];
+        v = motion[VEL + i];
     } else {
         let bounce = bounce_in(i, round - 1u);
         v = bounce.velocity;
-        body_impact[i] += bounce.push_on_body;
+        set_body_impact(i, body_impact_of(i) + bounce.push_on_body);
         if round < IMPACT_ROUNDS {
             put_vel(i, reads_back(round - 1u), v);
         } else if alive(i) {
@@ -82,9 +82,9 @@ fn meet(i: u32, round: u32) {
     }
     if round < IMPACT_ROUNDS {
         let first = first_contact_of(i, round, v.xyz);
-        first_contact[first_place(i, round)] = first;
+        ball_words[FIRST_CONTACT + first_place(i, round)] = first;
         if first != NONE {
-            atomicAdd(&impact_count[round], 1u);
+            atomicAdd(&counters[IMPACT_COUNT + round], 1u);
         }
     }
 }
@@ -94,16 +94,16 @@ fn meet(i: u32, round: u32) {
 // that lists it, and such a one-sided contact is met neither here nor by
 // the solver's pushes, only by its shifts (see solve.wgsl).
 fn note_mirrors(i: u32) {
-    for (var k = 0u; k < slot_count(state[i]); k++) {
-        let j = slot_other[i * SLOTS + k];
+    for (var k = 0u; k < slot_count(ball_words[STATE + i]); k++) {
+        let j = slot_words[SLOT_OTHER + i * SLOTS + k];
         var mirror = NONE;
-        for (var m = 0u; m < slot_count(state[j]); m++) {
-            if slot_other[j * SLOTS + m] == i {
+        for (var m = 0u; m < slot_count(ball_words[STATE + j]); m++) {
+            if slot_words[SLOT_OTHER + j * SLOTS + m] == i {
                 mirror = j * SLOTS + m;
                 break;
             }
         }
-        slot_mirror[i * SLOTS + k] = mirror;
+        slot_words[SLOT_MIRROR + i * SLOTS + k] = mirror;
         // Both balls of a contact start the solver from the same impulse
         // (see solve.wgsl): the lower-numbered ball's, which only its
         // own thread writes, and not here.
@@ -121,14 +121,14 @@ fn reads_back(round: u32) -> bool {
 // Where ball i's first contact in round `round` is kept: two copies, one
 // after the other, so that a round's are read while the next's are found.
 fn first_place(i: u32, round: u32) -> u32 {
-    return (round % 2u) * (arrayLength(&first_contact) / 2u) + i;
+    return (round % 2u) * (CAPACITY) + i;
 }
 
 // Ball j's velocity (w: inverse mass) as round `round` starts: as the
 // step starts, or after its bounce in the round before.
 fn velocity_in(j: u32, round: u32) -> vec4<f32> {
     if round == 0u {
-        return vel[j];
+        return motion[VEL + j];
     }
     return bounce_in(j, round - 1u).velocity;
 }
@@ -148,15 +148,15 @@ struct Bounce {
 fn bounce_in(j: u32, round: u32) -> Bounce {
     let back = reads_back(round);
     let v = vel_in(j, back);
-    let first = first_contact[first_place(j, round)];
+    let first = ball_words[FIRST_CONTACT + first_place(j, round)];
     if first == NONE {
         return Bounce(v, 0.0);
     }
     let im = v.w;
     if first < FIRST_WALL {
         let at = j * SLOTS + first;
-        let other = slot_other[at];
-        if first_contact[first_place(other, round)] != slot_mirror[at] - other * SLOTS {
+        let other = slot_words[SLOT_OTHER + at];
+        if ball_words[FIRST_CONTACT + first_place(other, round)] != slot_words[SLOT_MIRROR + at] - other * SLOTS {
             return Bounce(v, 0.0);
         }
         // Worked out alike by both balls, from the lower-numbered's side.
@@ -170,14 +170,14 @@ fn bounce_in(j: u32, round: u32) -> Bounce {
         let change = impulse * im * g.xyz * select(-1.0, 1.0, j == a);
         return Bounce(vec4<f32>(v.xyz + change, im), 0.0);
     }
-    let p = pos[j].xyz;
-    let r = pos[j].w;
+    let p = motion[POS + j].xyz;
+    let r = motion[POS + j].w;
     if first < FIRST_BODY {
         let n = nearest_wall(p, r, first - FIRST_WALL).xyz;
         let change = (1.0 + params.material.z) * -dot(v.xyz, n) * n;
         return Bounce(vec4<f32>(v.xyz + change, im), 0.0);
     }
-    let body = bodies[body_of[j]];
+    let body = bodies[ball_words[BODY_OF + j]];
     let n = direction(p - body.sphere.xyz);
     let point = body.sphere.xyz + n * body.sphere.w;
     let approach = -dot(v.xyz - body_point_velocity(body, point), n);
@@ -213,12 +213,12 @@ fn first_contact_of(i: u32, round: u32, v: vec3<f32>) -> u32 {
     }
     var first = NONE;
     var soonest = Rank(NEVER, NONE, NONE);
-    for (var k = 0u; k < slot_count(state[i]); k++) {
+    for (var k = 0u; k < slot_count(ball_words[STATE + i]); k++) {
         let at = i * SLOTS + k;
-        if slot_mirror[at] == NONE {
+        if slot_words[SLOT_MIRROR + at] == NONE {
             continue;
         }
-        let j = slot_other[at];
+        let j = slot_words[SLOT_OTHER + at];
         let a = min(i, j);
         let b = i + j - a;
         let g = pair_geometry(a, b);
@@ -231,10 +231,10 @@ fn first_contact_of(i: u32, round: u32, v: vec3<f32>) -> u32 {
             soonest = rank;
         }
     }
-    let p = pos[i].xyz;
-    let r = pos[i].w;
+    let p = motion[POS + i].xyz;
+    let r = motion[POS + i].w;
     for (var axis = 0u; axis < 3u; axis++) {
-        if touches_wall(state[i], axis) {
+        if touches_wall(ball_words[STATE + i], axis) {
             let wall = nearest_wall(p, r, axis);
             let rank = Rank(impact_time(-dot(v, wall.xyz), wall.w), i, FIRST_WALL + axis);
             if rank.time != NEVER && ranks_before(rank, soonest) {
@@ -243,7 +243,7 @@ fn first_contact_of(i: u32, round: u32, v: vec3<f32>) -> u32 {
             }
         }
     }
-    let b = body_of[i];
+    let b = ball_words[BODY_OF + i];
     if b != NONE {
         let body = bodies[b];
         let d = p - body.sphere.xyz;

@@ -8,38 +8,72 @@ mod contacts;
 mod flight;
 mod grid;
 mod impacts;
+mod reflect;
 mod report;
 mod scan;
 mod solve;
 
 pub use solve::SweepCounts;
 
-use crate::bindings::Buffers;
+use std::cell::RefCell;
+
+use crate::bindings::{Buffers, compute_buffer};
 use crate::layout::{BRICK, SLOTS, groups};
 use crate::profile::{Stage, StageTimer};
 
-/// What the stages build their pipelines from: the device, the layout of
-/// the balls' one bind group, and the WGSL every stage shares.
+/// What one pipeline of the engine binds: the numbers an adapter's limits
+/// are held against.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PassLayout {
+    /// The WGSL entry point.
+    pub entry: String,
+    /// Storage buffers it binds (a shader stage's count: it has one stage).
+    pub storage_buffers: u32,
+    /// Uniform buffers it binds.
+    pub uniform_buffers: u32,
+    /// Bind groups it sets.
+    pub bind_groups: u32,
+    /// Its largest binding, in bytes.
+    pub largest_binding: u64,
+    /// The bindings it uses, by number (see `common.wgsl`).
+    pub bindings: Vec<u32>,
+}
+
+/// A stage's WGSL, compiled, and its text (to read which buffers each
+/// entry point uses).
+pub struct Module {
+    shader: wgpu::ShaderModule,
+    source: String,
+}
+
+/// A pipeline and the bind group of exactly the buffers its entry point
+/// uses.
+pub struct Kernel {
+    pipeline: wgpu::ComputePipeline,
+    bind_group: wgpu::BindGroup,
+}
+
+/// What the stages build their pipelines from: the device, the buffers,
+/// the WGSL every stage shares, and the layouts made so far.
 pub struct Shaders<'a> {
     device: &'a wgpu::Device,
-    layout: wgpu::PipelineLayout,
+    buffers: &'a Buffers,
     common: String,
+    layouts: RefCell<Vec<PassLayout>>,
 }
 
 impl<'a> Shaders<'a> {
-    fn new(device: &'a wgpu::Device, balls: &wgpu::BindGroupLayout) -> Shaders<'a> {
+    fn new(device: &'a wgpu::Device, buffers: &'a Buffers) -> Shaders<'a> {
         Shaders {
             device,
-            layout: device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("balls"),
-                bind_group_layouts: &[Some(balls)],
-                immediate_size: 0,
-            }),
+            buffers,
+            layouts: RefCell::new(Vec::new()),
             common: format!(
-                "const SLOTS: u32 = {SLOTS}u;\nconst BRICK = vec3<u32>({}u, {}u, {}u);\n{}",
+                "const SLOTS: u32 = {SLOTS}u;\nconst BRICK = vec3<u32>({}u, {}u, {}u);\n{}{}",
                 BRICK[0],
                 BRICK[1],
                 BRICK[2],
+                buffers.wgsl_sections(),
                 include_str!("common.wgsl")
             ),
         }
@@ -47,46 +81,95 @@ impl<'a> Shaders<'a> {
 
     /// A stage's WGSL `source` after the shared file, with `constants`
     /// (name, value) declared above both.
-    fn module(&self, label: &str, constants: &[(&str, u32)], source: &str) -> wgpu::ShaderModule {
+    fn module(&self, label: &str, constants: &[(&str, u32)], source: &str) -> Module {
         let declared: String = constants
             .iter()
             .map(|(name, value)| format!("const {name}: u32 = {value}u;\n"))
             .collect();
-        self.device
-            .create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(
-                    format!("{declared}{}\n{source}", self.common).into(),
-                ),
+        let source = format!("{declared}{}\n{source}", self.common);
+        Module {
+            shader: self
+                .device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(label),
+                    source: wgpu::ShaderSource::Wgsl(source.as_str().into()),
+                }),
+            source,
+        }
+    }
+
+    /// The kernel of `entry` in `module`.
+    fn pipeline(&self, module: &Module, entry: &str) -> Kernel {
+        self.pipeline_with(module, entry, &[])
+    }
+
+    /// The kernel of `entry` in `module`, its overridable constants set to
+    /// `overrides`, binding only the buffers the entry point uses.
+    fn pipeline_with(&self, module: &Module, entry: &str, overrides: &[(&str, f64)]) -> Kernel {
+        let uses = reflect::uses(&module.source, entry);
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = uses
+            .iter()
+            .map(|u| compute_buffer(u.binding, u.ty))
+            .collect();
+        let layout = self
+            .device
+            .create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(entry),
+                entries: &entries,
+            });
+        let bound: Vec<wgpu::BindGroupEntry> = uses
+            .iter()
+            .map(|u| wgpu::BindGroupEntry {
+                binding: u.binding,
+                resource: self.buffers.at(u.binding).as_entire_binding(),
             })
-    }
-
-    /// The pipeline of `entry` in `module`, on the balls' bind group.
-    fn pipeline(&self, module: &wgpu::ShaderModule, entry: &str) -> wgpu::ComputePipeline {
-        self.pipeline_in(&self.layout, module, entry, &[])
-    }
-
-    /// The pipeline of `entry` in `module` on `layout`, its overridable
-    /// constants set to `overrides`.
-    fn pipeline_in(
-        &self,
-        layout: &wgpu::PipelineLayout,
-        module: &wgpu::ShaderModule,
-        entry: &str,
-        overrides: &[(&str, f64)],
-    ) -> wgpu::ComputePipeline {
-        self.device
+            .collect();
+        let bind_group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(entry),
+            layout: &layout,
+            entries: &bound,
+        });
+        let pipeline_layout = self
+            .device
+            .create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(entry),
+                bind_group_layouts: &[Some(&layout)],
+                immediate_size: 0,
+            });
+        let pipeline = self
+            .device
             .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(entry),
-                layout: Some(layout),
-                module,
+                layout: Some(&pipeline_layout),
+                module: &module.shader,
                 entry_point: Some(entry),
                 compilation_options: wgpu::PipelineCompilationOptions {
                     constants: overrides,
                     ..Default::default()
                 },
                 cache: None,
-            })
+            });
+        let storage = uses.iter().filter(|u| u.is_storage());
+        let layout = PassLayout {
+            entry: entry.to_owned(),
+            storage_buffers: storage.clone().count() as u32,
+            uniform_buffers: (uses.len() - storage.clone().count()) as u32,
+            bind_groups: 1,
+            largest_binding: uses
+                .iter()
+                .map(|u| self.buffers.at(u.binding).size())
+                .max()
+                .unwrap_or(0),
+            bindings: uses.iter().map(|u| u.binding).collect(),
+        };
+        let mut layouts = self.layouts.borrow_mut();
+        if !layouts.contains(&layout) {
+            layouts.push(layout);
+        }
+        Kernel {
+            pipeline,
+            bind_group,
+        }
     }
 }
 
@@ -100,16 +183,16 @@ enum Stamps {
     End,
 }
 
-/// A step being recorded: the encoder, what every pass binds, and the
-/// dispatches so far.
+/// A step being recorded: the encoder and the dispatches so far.
 pub struct Recorder<'a> {
     encoder: &'a mut wgpu::CommandEncoder,
-    bind_group: &'a wgpu::BindGroup,
     timer: Option<&'a StageTimer>,
     /// Balls in use.
     balls: u64,
     /// Whether the sweeping stages run in one workgroup each.
     small: bool,
+    /// Whether a fireball takes the balls it reaches.
+    catching: bool,
     dispatches: u32,
 }
 
@@ -134,13 +217,12 @@ impl Recorder<'_> {
                 },
             }
         });
-        let mut pass = self
+        let pass = self
             .encoder
             .begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(stage.name()),
                 timestamp_writes,
             });
-        pass.set_bind_group(0, self.bind_group, &[]);
         work(&mut Pass {
             pass,
             balls: self.balls,
@@ -158,9 +240,9 @@ pub struct Pass<'a, 'p> {
 
 impl Pass<'_, '_> {
     /// A thread for each of `items`.
-    fn over(&mut self, pipeline: &wgpu::ComputePipeline, items: u64) {
+    fn over(&mut self, kernel: &Kernel, items: u64) {
         let (x, y) = groups(items);
-        self.workgroups(pipeline, x, y);
+        self.workgroups(kernel, x, y);
     }
 
     /// The balls in use.
@@ -169,12 +251,13 @@ impl Pass<'_, '_> {
     }
 
     /// A thread for each ball in use.
-    fn over_balls(&mut self, pipeline: &wgpu::ComputePipeline) {
-        self.over(pipeline, self.balls);
+    fn over_balls(&mut self, kernel: &Kernel) {
+        self.over(kernel, self.balls);
     }
 
-    fn workgroups(&mut self, pipeline: &wgpu::ComputePipeline, x: u32, y: u32) {
-        self.pass.set_pipeline(pipeline);
+    fn workgroups(&mut self, kernel: &Kernel, x: u32, y: u32) {
+        self.pass.set_pipeline(&kernel.pipeline);
+        self.pass.set_bind_group(0, &kernel.bind_group, &[]);
         self.pass.dispatch_workgroups(x, y, 1);
         *self.dispatches += 1;
     }
@@ -188,49 +271,64 @@ pub struct Stages {
     solve: solve::Solve,
     report: report::Report,
     flight: flight::Flight,
+    layouts: Vec<PassLayout>,
 }
 
 impl Stages {
-    /// The stages for `buffers` (bound by `bind_group`, of `layout`), whose
-    /// grid has `cells` cells, sweeping `counts` times.
+    /// The stages for `buffers`, whose grid has `cells` cells, sweeping
+    /// `counts` times.
     pub fn new(
         device: &wgpu::Device,
         buffers: &Buffers,
-        layout: &wgpu::BindGroupLayout,
         cells: u64,
         counts: &SweepCounts,
     ) -> Stages {
-        let shaders = Shaders::new(device, layout);
+        let shaders = Shaders::new(device, buffers);
+        let grid = grid::Grid::new(&shaders, buffers, cells);
+        let contacts = contacts::Contacts::new(&shaders);
+        let impacts = impacts::Impacts::new(&shaders);
+        let solve = solve::Solve::new(&shaders, counts);
+        let report = report::Report::new(&shaders);
+        let flight = flight::Flight::new(&shaders);
+        let mut layouts = shaders.layouts.into_inner();
+        layouts.extend(grid.scan_layouts());
         Stages {
-            grid: grid::Grid::new(&shaders, buffers, cells),
-            contacts: contacts::Contacts::new(&shaders),
-            impacts: impacts::Impacts::new(&shaders),
-            solve: solve::Solve::new(&shaders, counts),
-            report: report::Report::new(&shaders),
-            flight: flight::Flight::new(&shaders),
+            grid,
+            contacts,
+            impacts,
+            solve,
+            report,
+            flight,
+            layouts,
         }
+    }
+
+    /// What each pipeline binds, an entry point a row.
+    pub fn layouts(&self) -> &[PassLayout] {
+        &self.layouts
     }
 
     /// Records one step of `balls` balls and `tumblers` tumblers into
     /// `encoder`, a compute pass a stage, each stamped by `timer` if given;
-    /// a small world's sweeping stages each in one workgroup. Returns the
-    /// dispatches recorded.
+    /// a small world's sweeping stages each in one workgroup; the balls a
+    /// fireball reaches taken if `catching`. Returns the dispatches
+    /// recorded.
     #[allow(clippy::too_many_arguments)]
     pub fn record(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        bind_group: &wgpu::BindGroup,
         timer: Option<&StageTimer>,
         balls: u64,
         tumblers: u32,
         small: bool,
+        catching: bool,
     ) -> u32 {
         let mut step = Recorder {
             encoder,
-            bind_group,
             timer,
             balls,
             small,
+            catching,
             dispatches: 0,
         };
         self.grid.record(&mut step);
@@ -244,18 +342,13 @@ impl Stages {
 
     /// Writes the renderer's instances of `balls` balls from the state as it
     /// is, without a step.
-    pub fn write_instances(
-        &self,
-        encoder: &mut wgpu::CommandEncoder,
-        bind_group: &wgpu::BindGroup,
-        balls: u64,
-    ) {
+    pub fn write_instances(&self, encoder: &mut wgpu::CommandEncoder, balls: u64) {
         let mut recorder = Recorder {
             encoder,
-            bind_group,
             timer: None,
             balls,
             small: false,
+            catching: false,
             dispatches: 0,
         };
         self.flight.record_instances(&mut recorder);

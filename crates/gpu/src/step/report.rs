@@ -1,11 +1,11 @@
 //! Stage 5, what the balls did to the tumblers (`report.wgsl`): each
 //! tumbler's push from the balls, summed in a fixed order.
 
-use super::{Recorder, Shaders};
+use super::{Kernel, Recorder, Shaders};
 use crate::profile::Stage;
 
 pub struct Report {
-    sum_tumbler_push: wgpu::ComputePipeline,
+    sum_tumbler_push: Kernel,
 }
 
 impl Report {

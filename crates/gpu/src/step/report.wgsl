@@ -33,21 +33,21 @@ fn sum_tumbler_push(
         for (var k = lid; k < total; k += WORKGROUP) {
             let off = vec3<i32>(i32(k % u32(size.x)), i32((k / u32(size.x)) % u32(size.y)), i32(k / u32(size.x * size.y)));
             let cell = cell_id(c0 + off);
-            for (var m = cell_start[cell]; m < cell_start[cell + 1u]; m++) {
-                let i = cell_balls[m];
-                let b = body_of[i];
+            for (var m = cell_words[CELL_START + cell]; m < cell_words[CELL_START + cell + 1u]; m++) {
+                let i = ball_words[CELL_BALLS + m];
+                let b = ball_words[BODY_OF + i];
                 if b == NONE || bodies[b].info.x != t {
                     continue;
                 }
                 // Its impact's push and its resting contact's.
-                let pushed = body_impulse[i].x + body_impulse[i].w;
+                let pushed = pushes[BODY_IMPULSE + i].x + pushes[BODY_IMPULSE + i].w;
                 if pushed <= 0.0 {
                     continue;
                 }
-                let n = direction(pos[i].xyz - bodies[b].sphere.xyz);
+                let n = direction(motion[POS + i].xyz - bodies[b].sphere.xyz);
                 let on_tumbler = -pushed * n;
                 let point = bodies[b].sphere.xyz + n * bodies[b].sphere.w;
-                impulse += vec4<f32>(on_tumbler, 1.0 / vel[i].w);
+                impulse += vec4<f32>(on_tumbler, 1.0 / motion[VEL + i].w);
                 moment += cross(point - origin, on_tumbler);
             }
         }

@@ -22,6 +22,8 @@ pub struct Scan {
     levels: Vec<Level>,
     /// Keeps the totals' buffers alive.
     _totals: Vec<wgpu::Buffer>,
+    /// The values' buffer's size: the largest binding.
+    largest_binding: u64,
 }
 
 struct Level {
@@ -126,7 +128,23 @@ impl Scan {
             add_block_offsets: pipeline("add_block_offsets"),
             levels,
             _totals: totals,
+            largest_binding: values.size(),
         }
+    }
+
+    /// What its two pipelines bind: the values, the block totals and the
+    /// level's length.
+    pub fn layouts(&self) -> Vec<super::PassLayout> {
+        ["scan_blocks", "add_block_offsets"]
+            .map(|entry| super::PassLayout {
+                entry: entry.to_owned(),
+                storage_buffers: 2,
+                uniform_buffers: 1,
+                bind_groups: 1,
+                largest_binding: self.largest_binding,
+                bindings: vec![0, 1, 2],
+            })
+            .to_vec()
     }
 
     /// Records the scan into `encoder`: down the levels scanning blocks,

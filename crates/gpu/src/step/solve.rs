@@ -4,7 +4,7 @@
 //! balls (see `ball_at` in `common.wgsl`), that also shift the balls out
 //! of their overlaps.
 
-use super::{Recorder, Shaders};
+use super::{Kernel, Recorder, Shaders};
 use crate::layout::WORKGROUP;
 use crate::profile::Stage;
 
@@ -21,9 +21,9 @@ pub struct SweepCounts {
 pub struct Solve {
     /// The dispatches that read the first copy and those that read the
     /// second, taken in turn.
-    each_way: [wgpu::ComputePipeline; 2],
+    each_way: [Kernel; 2],
     dispatches: u32,
-    in_one_group: wgpu::ComputePipeline,
+    in_one_group: Kernel,
 }
 
 impl Solve {

@@ -47,7 +47,7 @@ const BODY_WEIGHTS: f32 = 4.0;
 // the sweeps with them (counted afresh each sweep, a frictionless pile
 // flickered and never came to rest).
 fn shares(i: u32, seen: Seen) -> f32 {
-    return max(f32(max((state[i] >> PRESSING_SHIFT) & 31u, 1u)), seen.spin.w);
+    return max(f32(max((ball_words[STATE + i] >> PRESSING_SHIFT) & 31u, 1u)), seen.spin.w);
 }
 
 // How far past its own fix a contact whose balls' mass is split at most
@@ -74,7 +74,7 @@ fn seen_in(i: u32, back: bool) -> Seen {
 
 // Where ball i stands as a sweep sees it: moved by its shift so far.
 fn shifted(i: u32, seen: Seen) -> vec3<f32> {
-    return pos[i].xyz + seen.shift.xyz;
+    return motion[POS + i].xyz + seen.shift.xyz;
 }
 
 // Ball i's change of velocity, of spin and of shift, from its contacts,
@@ -100,8 +100,8 @@ fn shift_share(depth: f32, contacts: f32) -> f32 {
 fn solve_pair(i: u32, j: u32, at: u32, mine: Seen, theirs: Seen) -> Push {
     let a = min(i, j);
     let b = i + j - a;
-    let pa = pos[a];
-    let pb = pos[b];
+    let pa = motion[POS + a];
+    let pb = motion[POS + b];
     let first_is_mine = i == a;
     var seen_a = theirs;
     var seen_b = mine;
@@ -128,7 +128,7 @@ fn solve_pair(i: u32, j: u32, at: u32, mine: Seen, theirs: Seen) -> Push {
     set_impulse(at, vec4<f32>(friction, normal));
     // On the lower-numbered ball; the other gets its opposite.
     let change = (normal - total.w) * n + (friction - total.xyz);
-    let im = vel[i].w;
+    let im = motion[VEL + i].w;
     let pushing = select(0.0, 1.0, normal > 0.0);
     let none = vec3<f32>(0.0);
     if first_is_mine {
@@ -148,7 +148,7 @@ fn shift_out_of(i: u32, j: u32, mine: Seen, theirs: Seen) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
     let split = max(shares(i, mine), shares(j, theirs));
-    let depth = pos[i].w + pos[j].w - apart;
+    let depth = motion[POS + i].w + motion[POS + j].w - apart;
     return ahead / apart * shift_share(depth, split) * mine.vel.w / (mine.vel.w + theirs.vel.w);
 }
 
@@ -156,24 +156,24 @@ fn shift_out_of(i: u32, j: u32, mine: Seen, theirs: Seen) -> vec3<f32> {
 // its mass split `shares` ways. (No shift: the room holds a shifted ball
 // within it, see `pushed`.)
 fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, shares: f32) -> Push {
-    let p = pos[i].xyz;
-    let r = pos[i].w;
-    let im = vel[i].w;
+    let p = motion[POS + i].xyz;
+    let r = motion[POS + i].w;
+    let im = motion[VEL + i].w;
     var push = NO_PUSH;
     for (var axis = 0u; axis < 3u; axis++) {
-        if !touches_wall(state[i], axis) {
+        if !touches_wall(ball_words[STATE + i], axis) {
             continue;
         }
         let wall = nearest_wall(p, r, axis);
         let n = wall.xyz;
         let k = shares * im / relaxation(shares);
-        let total = wall_impulse[i * 3u + axis];
+        let total = pushes[WALL_IMPULSE + i * 3u + axis];
         let goal = speculative_goal(wall.w);
         let normal = max(0.0, total.w + (goal - dot(v, n)) / k);
         let u = v + cross(w, -r * n);
         let slip = u - dot(u, n) * n;
         let friction = clamp_friction(total.xyz - slip / (3.5 * k), params.material.w * normal);
-        wall_impulse[i * 3u + axis] = vec4<f32>(friction, normal);
+        pushes[WALL_IMPULSE + i * 3u + axis] = vec4<f32>(friction, normal);
         let change = (normal - total.w) * n + (friction - total.xyz);
         push.velocity += change * im;
         push.spin += cross(-r * n, change) * inv_inertia(im, r);
@@ -187,21 +187,21 @@ fn solve_walls(i: u32, v: vec3<f32>, w: vec3<f32>, shares: f32) -> Push {
 // the ball alone is shifted out of it (but not out of the fireball, which
 // passes through).
 fn solve_body(i: u32, v: vec3<f32>, to: vec3<f32>, shares: f32) -> Push {
-    let b = body_of[i];
+    let b = ball_words[BODY_OF + i];
     if b == NONE {
         return NO_PUSH;
     }
-    let p = pos[i].xyz;
-    let r = pos[i].w;
-    let im = vel[i].w;
+    let p = motion[POS + i].xyz;
+    let r = motion[POS + i].w;
+    let im = motion[VEL + i].w;
     let body = bodies[b];
     let d = p - body.sphere.xyz;
     let n = d / max(length(d), 1e-9);
     let point = body.sphere.xyz + n * body.sphere.w;
     let vb = body_point_velocity(body, point);
-    let total = body_impulse[i];
+    let total = pushes[BODY_IMPULSE + i];
     let goal = speculative_goal(length(d) - r - body.sphere.w);
-    let approach = -dot(vel_start[i].xyz - vb, n);
+    let approach = -dot(motion[VEL_START + i].xyz - vb, n);
     // The tumbler stands still within the step, but the push is shared
     // as if it gave way: its effective mass at the point counts.
     let body_im = body_inverse_mass(body, point, n);
@@ -211,7 +211,7 @@ fn solve_body(i: u32, v: vec3<f32>, to: vec3<f32>, shares: f32) -> Push {
     let most = ((1.0 + params.more.y) * max(approach, 0.0) + BODY_WEIGHTS * params.room_max.w * dt()) / (im + body_im);
     let k = (shares * im + body_im) / relaxation(shares);
     let normal = clamp(total.w + (goal - dot(v - vb, n)) / k, 0.0, most);
-    body_impulse[i] = vec4<f32>(total.x, 0.0, 0.0, normal);
+    pushes[BODY_IMPULSE + i] = vec4<f32>(total.x, 0.0, 0.0, normal);
     // Out of where it would stand after the step, as `shift_out_of`.
     var apart = vec3<f32>(0.0);
     let ahead = to + v * dt() - body.sphere.xyz;
@@ -240,8 +240,8 @@ fn add_push(push: ptr<function, Push>, more: Push) {
 // Ball i after a sweep's `push`, its shares kept (see `shares`), shifted
 // no further than the room holds it.
 fn pushed(i: u32, mine: Seen, push: Push) -> Seen {
-    let p = pos[i].xyz;
-    let r = pos[i].w;
+    let p = motion[POS + i].xyz;
+    let r = motion[POS + i].w;
     let held = clamp(
         p + mine.shift.xyz + push.shift,
         params.room_min.xyz + r,
@@ -293,7 +293,7 @@ fn solve_block(g: u32, t: u32, back: bool) -> bool {
             let before = block_balls[t];
             after = sweep_in_block(i, g, before, sweep == 0u, back);
             let moved = length(after.vel.xyz - before.vel.xyz)
-                + pos[i].w * length(after.spin.xyz - before.spin.xyz)
+                + motion[POS + i].w * length(after.spin.xyz - before.spin.xyz)
                 + length(after.shift.xyz - before.shift.xyz) / dt();
             if moved > SETTLED_SPEED {
                 atomicOr(&block_moving, 1u);
@@ -346,9 +346,9 @@ var<workgroup> block_sweeping: u32;
 // One sweep of ball i in block g (see `solve_block`).
 fn sweep_in_block(i: u32, g: u32, mine: Seen, first: bool, back: bool) -> Seen {
     var push = solve_own(i, mine);
-    for (var k = 0u; k < slot_count(state[i]); k++) {
+    for (var k = 0u; k < slot_count(ball_words[STATE + i]); k++) {
         let at = i * SLOTS + k;
-        let j = slot_other[at];
+        let j = slot_words[SLOT_OTHER + at];
         let near = place_in_block(j, g, block_start(back));
         // Another block's ball is seen in the first sweep only.
         if near == NONE && !first {
@@ -363,7 +363,7 @@ fn sweep_in_block(i: u32, g: u32, mine: Seen, first: bool, back: bool) -> Seen {
         }
         // A contact its other ball does not list (its nearest were nearer)
         // is not solved, but this ball is shifted out of it.
-        if slot_mirror[at] != NONE {
+        if slot_words[SLOT_MIRROR + at] != NONE {
             add_push(&push, solve_pair(i, j, at, mine, theirs));
         }
         if alive(j) {
