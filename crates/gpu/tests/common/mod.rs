@@ -7,8 +7,15 @@ use rolypoly_gpu::{BallState, Compute, GpuBalls};
 use rolypoly_physics::{BallPlacement, World, WorldConfig};
 
 /// The one device the tests open (lavapipe in CI); a missing adapter fails loudly.
+/// The adapter is printed, so that a failure names where it ran. A
+/// software Vulkan may take minutes over the steps a test queues before it
+/// reads the balls back: the tests wait up to ten.
 pub fn compute() -> Compute {
-    Compute::headless().unwrap_or_else(|e| panic!("the GPU engine's tests need an adapter: {e}"))
+    rolypoly_gpu::set_program_gpu_timeout(std::time::Duration::from_secs(600));
+    let compute = Compute::headless()
+        .unwrap_or_else(|e| panic!("the GPU engine's tests need an adapter: {e}"));
+    eprintln!("on {}", compute.adapter);
+    compute
 }
 
 /// An empty room of `size`, no tumblers, no fireball, the given balls' count.
@@ -41,7 +48,7 @@ pub fn placed(position: DVec3, velocity: DVec3) -> BallPlacement {
 }
 
 /// The deepest overlap between two live balls, or of a ball with a wall (m),
-/// and how many balls are outside the room.
+/// and how many balls are outside the room (the first of them printed).
 pub fn overlap_and_escapes(state: &BallState, min: DVec3, max: DVec3) -> (f64, usize) {
     let live: Vec<usize> = (0..state.positions.len())
         .filter(|&i| state.alive[i])
@@ -52,6 +59,12 @@ pub fn overlap_and_escapes(state: &BallState, min: DVec3, max: DVec3) -> (f64, u
         let p = state.positions[i].as_dvec3();
         let r = f64::from(state.radii[i]);
         if !(p.cmpge(min).all() && p.cmple(max).all() && p.is_finite()) {
+            if escaped == 0 {
+                eprintln!(
+                    "ball {i} out of the room: at {p}, moving at {}",
+                    state.velocities[i]
+                );
+            }
             escaped += 1;
         }
         let wall = (p - min).min(max - p).min_element();
