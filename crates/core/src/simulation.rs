@@ -51,8 +51,27 @@ impl Simulation {
         adapter: &wgpu::Adapter,
     ) -> Result<(), GpuError> {
         let balls = GpuBalls::new(device.clone(), queue.clone(), adapter, &mut self.world)?;
-        self.gpu = Some(Arc::new(Mutex::new(balls)));
+        self.hand_balls_to(balls);
         Ok(())
+    }
+
+    /// As [`Simulation::move_balls_to_gpu`], on a device opened without a
+    /// renderer (to hear or count the balls, not to draw them).
+    pub fn move_balls_to_compute(
+        &mut self,
+        compute: &rolypoly_gpu::Compute,
+    ) -> Result<(), GpuError> {
+        let balls = GpuBalls::on_compute(compute, &mut self.world)?;
+        self.hand_balls_to(balls);
+        Ok(())
+    }
+
+    /// The GPU engine steps the balls from here on, reporting their
+    /// impacts as the CPU engine's world does, for the effects and the
+    /// sound.
+    fn hand_balls_to(&mut self, mut balls: GpuBalls) {
+        balls.listen(true);
+        self.gpu = Some(Arc::new(Mutex::new(balls)));
     }
 
     /// Whether the GPU engine steps the balls.
@@ -142,7 +161,7 @@ impl Simulation {
         let stepped = match gpu {
             Some(balls) => {
                 let stepped = balls.step(&mut self.world);
-                balls.take_catches(&mut self.events);
+                balls.take_events(&mut self.events);
                 stepped
             }
             None => Ok(()),
@@ -154,7 +173,7 @@ impl Simulation {
     }
 
     /// The last tick's events: the world's, then the balls the GPU engine's
-    /// fireball caught.
+    /// fireball caught and their impacts.
     pub fn last_events(&self) -> &[Event] {
         &self.events
     }

@@ -10,7 +10,7 @@
 //! long as the buffers have room for balls, so that each keeps the order of
 //! its own array (neighbouring threads read neighbouring elements).
 
-use crate::layout::{Body, Catch, EVENT_CAPACITY, IMPACT_ROUNDS, SLOTS};
+use crate::layout::{Body, Catch, EVENT_CAPACITY, IMPACT_CAPACITY, IMPACT_ROUNDS, SLOTS};
 
 /// A storage buffer a compute pass reads and writes.
 pub const READ_WRITE: wgpu::BufferBindingType =
@@ -62,6 +62,7 @@ const PUSHES: &[(&str, Extent)] = &[
     ("WALL_IMPULSE", Extent::Balls(3)),
     ("BODY_IMPULSE", Extent::Balls(1)),
     ("SHIFT", Extent::Balls(2)),
+    ("IMPACTS", Extent::Fixed(3 * IMPACT_CAPACITY)),
 ];
 const SLOT_IMPULSE: &[(&str, Extent)] = &[("SLOT_IMPULSE", Extent::Balls(HALF_SLOTS))];
 const SLOT_IMPULSE_MORE: &[(&str, Extent)] = &[("SLOT_IMPULSE_MORE", Extent::Balls(HALF_SLOTS))];
@@ -87,6 +88,7 @@ const COUNTERS: &[(&str, Extent)] = &[
     ("CELL_FILL", Extent::Cells),
     ("EVENT_COUNT", Extent::Fixed(1)),
     ("IMPACT_COUNT", Extent::Fixed(IMPACT_ROUNDS as u64)),
+    ("IMPACT_EVENTS", Extent::Fixed(1)),
 ];
 
 /// One packed buffer: its label, its element's size in bytes, and its

@@ -4,7 +4,10 @@
 use crate::GpuError;
 use crate::bindings::{Buffers, Sizes};
 use crate::device::describe;
-use crate::layout::{Body, Catch, EVENT_CAPACITY, FIREBALL, IMPACT_ROUNDS, Params, grid_cells};
+use crate::layout::{
+    Body, Catch, EVENT_CAPACITY, FIREBALL, HIT_BALL, HIT_BODY, HIT_WALL, IMPACT_CAPACITY,
+    IMPACT_ROUNDS, Impact, Params, grid_cells,
+};
 use crate::profile::StageTimer;
 use crate::readback::read_buffer;
 use crate::step::{PassLayout, Stages, SweepCounts};
@@ -90,9 +93,14 @@ pub struct GpuBalls {
     palette_layout: PaletteLayout,
     /// Worlds of up to this many balls sweep in one workgroup.
     small_world_balls: u32,
-    /// The small buffer the step's pushes and catches come back in.
+    /// The buffer the step's pushes, catches and impacts come back in.
     report: wgpu::Buffer,
-    catches: Vec<Event>,
+    /// The catches and impacts reported and not yet taken.
+    events: Vec<Event>,
+    /// Whether each step's impacts are read back.
+    listening: bool,
+    /// Impacts past a step's capacity, counted and not reported.
+    impacts_dropped: u64,
     steps: u64,
     /// Dispatches the last step recorded, one after another: on a GPU
     /// each waits for the one before, so their count bounds a step's time
@@ -249,7 +257,9 @@ impl GpuBalls {
             palette_layout,
             small_world_balls: SMALL_WORLD_BALLS,
             report,
-            catches: Vec::new(),
+            events: Vec::new(),
+            listening: false,
+            impacts_dropped: 0,
             steps: 0,
             dispatches: 0,
         };
@@ -437,7 +447,8 @@ impl GpuBalls {
     /// `world` has them now. The tumblers' pushes from the balls come back
     /// at the end of the step and are given to `world`'s tumblers, which
     /// feel them from their next step on; the balls the fireball caught are
-    /// reported (see [`GpuBalls::take_catches`]).
+    /// reported, and the balls' impacts where it listens (see
+    /// [`GpuBalls::take_events`]).
     pub fn step(&mut self, world: &mut World) -> Result<(), GpuError> {
         self.step_timed(world, None)
     }
@@ -459,6 +470,7 @@ impl GpuBalls {
         if catching {
             self.write_section("EVENT_COUNT", 0, &[0; 4]);
         }
+        self.write_section("IMPACT_EVENTS", 0, &[0; 4]);
         self.write_section(
             "IMPACT_COUNT",
             0,
@@ -476,7 +488,7 @@ impl GpuBalls {
         if let Some(timer) = timer {
             timer.resolve(&mut encoder);
         }
-        let report = self.tumblers > 0 || catching;
+        let report = self.tumblers > 0 || catching || self.listening;
         if report {
             let push = 32 * self.tumblers as u64;
             encoder.copy_buffer_to_buffer(&self.buffers.tumbler_push, 0, &self.report, 0, push);
@@ -489,6 +501,19 @@ impl GpuBalls {
                 push + 16,
                 EVENT_CAPACITY * std::mem::size_of::<Catch>() as u64,
             );
+            if self.listening {
+                let at = impacts_at(self.tumblers);
+                let (counters, count) = self.buffers.section("IMPACT_EVENTS");
+                encoder.copy_buffer_to_buffer(counters, count, &self.report, at, 4);
+                let (pushes, impacts) = self.buffers.section("IMPACTS");
+                encoder.copy_buffer_to_buffer(
+                    pushes,
+                    impacts,
+                    &self.report,
+                    at + 16,
+                    IMPACT_CAPACITY * std::mem::size_of::<Impact>() as u64,
+                );
+            }
         }
         self.queue.submit([encoder.finish()]);
         self.steps += 1;
@@ -535,6 +560,21 @@ impl GpuBalls {
         self.small_world_balls = balls;
     }
 
+    /// Reports the balls' impacts from the next step on, or stops: each
+    /// ball's with a wall, another ball or a tumbler closing faster than
+    /// the scene's event threshold, as the CPU engine reports them (see
+    /// [`GpuBalls::take_events`]). A step's impacts are read back at its
+    /// end, so a listening engine waits for the GPU once a step.
+    pub fn listen(&mut self, on: bool) {
+        self.listening = on;
+    }
+
+    /// Impacts the steps found past what a step reports
+    /// (`IMPACT_CAPACITY`, 8192), counted and left out.
+    pub fn impacts_dropped(&self) -> u64 {
+        self.impacts_dropped
+    }
+
     /// Waits until the GPU has done every step submitted.
     pub fn finish(&self) -> Result<(), GpuError> {
         let steps = self.steps;
@@ -554,7 +594,8 @@ impl GpuBalls {
         self.queue.submit([encoder.finish()]);
     }
 
-    /// Reads the step's report: gives each tumbler its push, keeps the catches.
+    /// Reads the step's report: gives each tumbler its push, keeps the
+    /// catches and the impacts.
     fn take_report(&mut self, world: &mut World) -> Result<(), GpuError> {
         let step = self.steps;
         let bytes = read_buffer(
@@ -562,7 +603,11 @@ impl GpuBalls {
             &self.wait,
             &self.report,
             report_size(self.tumblers) as usize,
-            || format!("the gpu engine's step {step} (its report of tumbler pushes and catches)"),
+            || {
+                format!(
+                    "the gpu engine's step {step} (its report of tumbler pushes, catches and impacts)"
+                )
+            },
         )?;
         let push: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes[..32 * self.tumblers]);
         for t in 0..self.tumblers {
@@ -575,14 +620,14 @@ impl GpuBalls {
         let at = 32 * self.tumblers;
         let count = u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
         let caught: Vec<Catch> = bytemuck::pod_collect_to_vec(&bytes[at + 16..]);
-        let first = self.catches.len();
+        let first = self.events.len();
         for c in caught
             .iter()
             .take((count as usize).min(EVENT_CAPACITY as usize))
         {
             let [px, py, pz, ball] = c.point;
             let [nx, ny, nz, speed] = c.normal;
-            self.catches.push(Event {
+            self.events.push(Event {
                 kind: EventKind::FireballBall {
                     ball: ball.to_bits() as usize,
                 },
@@ -595,10 +640,31 @@ impl GpuBalls {
         }
         // The atomics set the order they were written in; the ball's number
         // sets the order they are reported in.
-        self.catches[first..].sort_by_key(|e| match e.kind {
+        self.events[first..].sort_by_key(|e| match e.kind {
             EventKind::FireballBall { ball } => ball,
             _ => usize::MAX,
         });
+        if self.listening {
+            let at = impacts_at(self.tumblers) as usize;
+            let count =
+                u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+            let impacts: Vec<Impact> = bytemuck::pod_collect_to_vec(&bytes[at + 16..]);
+            let first = self.events.len();
+            self.events.extend(
+                impacts
+                    .iter()
+                    .take((count as usize).min(IMPACT_CAPACITY as usize))
+                    .filter_map(impact_event),
+            );
+            // In the atomics' order as written: put in the order of when
+            // within the step, then the ball's and the other's numbers.
+            self.events[first..].sort_by(|a, b| {
+                a.within_step
+                    .total_cmp(&b.within_step)
+                    .then_with(|| impact_key(a).cmp(&impact_key(b)))
+            });
+            self.impacts_dropped += u64::from(count).saturating_sub(IMPACT_CAPACITY);
+        }
         Ok(())
     }
 
@@ -633,9 +699,10 @@ impl GpuBalls {
         self.queue.write_buffer(buffer, first + at, bytes);
     }
 
-    /// The balls the fireball caught since the last call, as events.
-    pub fn take_catches(&mut self, into: &mut Vec<Event>) {
-        into.append(&mut self.catches);
+    /// The balls the fireball caught since the last call, then the impacts
+    /// (where the engine listens, see [`GpuBalls::listen`]), as events.
+    pub fn take_events(&mut self, into: &mut Vec<Event>) {
+        into.append(&mut self.events);
     }
 
     /// Reads every ball back from the GPU (for traces, tests and the bench;
@@ -682,7 +749,60 @@ impl GpuBalls {
 }
 
 /// Bytes of the step report: two vectors a tumbler, the catch count
-/// (padded to 16), the catches.
+/// (padded to 16), the catches, the impact count (padded to 16), the
+/// impacts.
 fn report_size(tumblers: usize) -> u64 {
+    impacts_at(tumblers) + 16 + IMPACT_CAPACITY * std::mem::size_of::<Impact>() as u64
+}
+
+/// Where the impact count starts in the step report.
+fn impacts_at(tumblers: usize) -> u64 {
     32 * tumblers as u64 + 16 + EVENT_CAPACITY * std::mem::size_of::<Catch>() as u64
+}
+
+/// What orders a step's impacts reported at the same moment: the ball,
+/// then what it met.
+fn impact_key(e: &Event) -> (usize, u8, usize) {
+    match e.kind {
+        EventKind::BallSurface { ball, surface } => (ball, 0, surface.index()),
+        EventKind::BallBall { a, b } => (a, 1, b),
+        EventKind::BallTumbler {
+            ball,
+            tumbler,
+            sphere,
+        } => (ball, 2, tumbler * 64 + sphere),
+        _ => (usize::MAX, 3, 0),
+    }
+}
+
+/// An impact as the step reported it, as an event; `None` for a ball's
+/// bounce off the fireball, which the CPU engine does not report either.
+fn impact_event(impact: &Impact) -> Option<Event> {
+    let [px, py, pz, ball] = impact.point;
+    let [nx, ny, nz, speed] = impact.normal;
+    let [hit, other, within, _] = impact.info;
+    let ball = ball.to_bits() as usize;
+    let kind = match hit {
+        HIT_WALL => EventKind::BallSurface {
+            ball,
+            surface: *rolypoly_physics::Surface::ALL.get(other as usize)?,
+        },
+        HIT_BALL => EventKind::BallBall {
+            a: ball,
+            b: other as usize,
+        },
+        HIT_BODY if other & 0xffff != FIREBALL => EventKind::BallTumbler {
+            ball,
+            tumbler: (other & 0xffff) as usize,
+            sphere: (other >> 16) as usize,
+        },
+        _ => return None,
+    };
+    Some(Event {
+        kind,
+        point: DVec3::new(px.into(), py.into(), pz.into()),
+        normal: DVec3::new(nx.into(), ny.into(), nz.into()),
+        speed: speed.into(),
+        within_step: f32::from_bits(within).into(),
+    })
 }

@@ -108,6 +108,31 @@ pub struct Catch {
     pub normal: [f32; 4],
 }
 
+/// A ball's impact as the step reports it (`report_impact` in the WGSL),
+/// three vectors of the `pushes` buffer's `IMPACTS` section.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
+pub struct Impact {
+    /// Where; w: the ball's number, as bits.
+    pub point: [f32; 4],
+    /// From what it met towards the ball; w: how fast they closed.
+    pub normal: [f32; 4],
+    /// What it met (`HIT_WALL`, `HIT_BALL`, `HIT_BODY`), which (the
+    /// surface, the ball, or the tumbler and its sphere in the low and high
+    /// halves), and when within the step (s, f32 bits).
+    pub info: [u32; 4],
+}
+
+/// What a ball met, in [`Impact::info`].
+pub const HIT_WALL: u32 = 0;
+/// Another ball.
+pub const HIT_BALL: u32 = 1;
+/// A tumbler's sphere.
+pub const HIT_BODY: u32 = 2;
+
+/// Impacts reported in one step at most; past it they are counted only.
+pub const IMPACT_CAPACITY: u64 = 8192;
+
 /// Workgroups for `items` items, spilled into y past [`MAX_GROUPS`].
 pub fn groups(items: u64) -> (u32, u32) {
     let groups = items.div_ceil(u64::from(WORKGROUP)).max(1);

@@ -263,7 +263,7 @@ fn the_fireball_catches_the_balls_it_meets() {
         let mut caught = Vec::new();
         for _ in 0..360 {
             step(&mut world, &mut balls);
-            balls.take_catches(&mut caught);
+            balls.take_events(&mut caught);
         }
         let state = balls.read().unwrap();
         let dead: Vec<usize> = (0..state.alive.len())

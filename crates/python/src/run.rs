@@ -58,7 +58,9 @@ impl Run {
             Engine::Gpu => {
                 let made = world.balls().clone();
                 let compute = Compute::headless().map_err(MakeError::Gpu)?;
-                let gpu = GpuBalls::on_compute(&compute, &mut world).map_err(MakeError::Gpu)?;
+                let mut gpu = GpuBalls::on_compute(&compute, &mut world).map_err(MakeError::Gpu)?;
+                // Its impacts reported as the CPU engine's world reports them.
+                gpu.listen(true);
                 (Some(gpu), Some(made))
             }
         };

@@ -20,8 +20,8 @@ const MAX_SECONDS: f64 = 3600.0;
 /// that :func:`render` draws from), as ``rolypoly sound`` makes it: a
 /// (frames, 2) float32 array of left and right samples at 48 000 a second,
 /// each within ±0.891 (-1 dBFS). The scene's ``sound.*`` keys set the
-/// volume and the materials. A world on the GPU engine is refused: it does
-/// not report the balls' impacts.
+/// volume and the materials. A world on the GPU engine is refused: its
+/// balls' sizes and places are not kept on the CPU.
 #[pyfunction]
 #[pyo3(signature = (world, seconds, camera=None))]
 pub fn sound<'py>(
@@ -40,7 +40,7 @@ pub fn sound<'py>(
     let run = &mut world.run;
     if run.gpu.is_some() {
         return Err(value_error(
-            "the GPU engine does not report the balls' impacts, so its balls make no sound: make the world with engine=\"cpu\"",
+            "the GPU engine's balls are not kept on the CPU, where the sound reads each ball's size and place, so they make no sound: make the world with engine=\"cpu\"",
         ));
     }
     let camera = chosen_camera(

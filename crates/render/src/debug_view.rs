@@ -579,8 +579,17 @@ fn contacts(world: &World, events: &[Event]) -> Vec<Shown> {
     }
     let balls = world.balls();
     let config = world.config();
+    // The GPU engine's balls are not the world's: their impacts have no
+    // contact of the world's to mark.
+    let ours = |ball: usize| ball < balls.len();
     for e in events {
         let (kind, pair, mass, restitution) = match e.kind {
+            EventKind::BallBall { a, b } if !(ours(a) && ours(b)) => continue,
+            EventKind::BallSurface { ball, .. } | EventKind::BallTumbler { ball, .. }
+                if !ours(ball) =>
+            {
+                continue;
+            }
             EventKind::BallBall { a, b } => {
                 let (ma, mb) = (balls.masses()[a], balls.masses()[b]);
                 let pair = [Some(a.min(b)), Some(a.max(b))];

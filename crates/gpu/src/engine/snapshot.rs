@@ -87,7 +87,7 @@ impl GpuBalls {
         Ok(GpuSnapshot {
             params: self.params,
             steps,
-            catches: self.catches.clone(),
+            catches: self.events.clone(),
             buffers,
         })
     }
@@ -114,7 +114,7 @@ impl GpuBalls {
         }
         self.params = snapshot.params;
         self.steps = snapshot.steps;
-        self.catches.clone_from(&snapshot.catches);
+        self.events.clone_from(&snapshot.catches);
         self.queue
             .write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&self.params));
         self.queue.submit([]);

@@ -100,7 +100,8 @@ struct Event {
 // contact with a body (x the impacts', w the resting contact's); SHIFT how
 // far the solver moves it out of its overlaps this step, by position
 // alone (see solve.wgsl): two copies, one after the other, that its sweeps
-// alternate between as they do the velocities (see `shift_place`).
+// alternate between as they do the velocities (see `shift_place`); and
+// IMPACTS, the step's impacts, three vectors each (see `report_impact`).
 @group(0) @binding(2) var<storage, read_write> pushes: array<vec4<f32>>;
 // Each ball's contacts' impulses so far (friction xyz, normal w), SLOTS a
 // ball in two halves (see `impulse_at`).
@@ -124,7 +125,8 @@ struct Event {
 @group(0) @binding(7) var<storage, read_write> cell_words: array<u32>;
 // What threads count together: CELL_FILL each cell's balls not yet placed
 // (zero between steps), EVENT_COUNT the catches, IMPACT_COUNT how many
-// balls meet a contact in each impact round (see impacts.wgsl).
+// balls meet a contact in each impact round (see impacts.wgsl),
+// IMPACT_EVENTS the impacts reported.
 @group(0) @binding(8) var<storage, read_write> counters: array<atomic<u32>>;
 @group(0) @binding(9) var<storage, read> bodies: array<Body>;
 @group(0) @binding(10) var<storage, read> palette: array<vec4<f32>>;
@@ -298,6 +300,32 @@ fn surface_of(n: vec3<f32>) -> u32 {
 
 fn set_color(i: u32, palette_index: u32) {
     ball_words[STATE + i] = (ball_words[STATE + i] & 0xffffu) | (palette_index << COLOR_SHIFT);
+}
+
+// Reports ball i's impact with what `hit` and `other` name (HIT_WALL and
+// the surface, HIT_BALL and the ball, HIT_BODY and the tumbler and its
+// sphere): where, along which normal (from what it met towards it), how
+// fast they closed, and when within the step. The reports are appended in
+// whatever order the atomics land in; the CPU sorts them. Past
+// IMPACT_CAPACITY they are counted only.
+fn report_impact(i: u32, hit: u32, other: u32, point: vec3<f32>, normal: vec3<f32>, speed: f32, within: f32) {
+    let e = atomicAdd(&counters[IMPACT_EVENTS], 1u);
+    if e < IMPACT_CAPACITY {
+        let at = IMPACTS + 3u * e;
+        pushes[at] = vec4<f32>(point, bitcast<f32>(i));
+        pushes[at + 1u] = vec4<f32>(normal, speed);
+        pushes[at + 2u] = vec4<f32>(bitcast<f32>(hit), bitcast<f32>(other), within, 0.0);
+    }
+}
+
+// When within the step a contact `gap` apart, closing at `speed`, met.
+fn closing_time(gap: f32, speed: f32) -> f32 {
+    return min(max(gap, 0.0) / max(speed, 1e-30), dt());
+}
+
+// How an impact report names a body: its tumbler, and its sphere above.
+fn body_code(b: Body) -> u32 {
+    return b.info.x | (b.info.y << 16u);
 }
 
 fn slot_count(s: u32) -> u32 {

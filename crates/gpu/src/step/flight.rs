@@ -1,7 +1,8 @@
 //! Stage 6, the flight (`flight.wgsl`): balls a contact held move at their
 //! solved velocity; others fly their exact parabola, bouncing exactly off
-//! the walls; each from where the solver shifted it. The same pass writes
-//! what the renderer draws.
+//! the walls; each from where the solver shifted it, its impacts
+//! reported. A second pass writes what the renderer draws (in one, the
+//! pass would bind more buffers than WebGPU promises).
 
 use super::{Kernel, Recorder, Shaders};
 use crate::profile::Stage;
@@ -21,7 +22,10 @@ impl Flight {
     }
 
     pub fn record(&self, step: &mut Recorder) {
-        step.stage(Stage::Flight, |pass| pass.over_balls(&self.fly));
+        step.stage(Stage::Flight, |pass| {
+            pass.over_balls(&self.fly);
+            pass.over_balls(&self.write_instances);
+        });
     }
 
     /// The renderer's instances of the balls as they stand, without a step.

@@ -66,20 +66,17 @@ fn normal_of(surface: u32) -> vec3<f32> {
     return n;
 }
 
-// Each ball moved, and what the renderer draws of it written.
+// Each ball moved, its impacts reported.
 @compute @workgroup_size(256)
 fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
-    if i >= params.count {
-        return;
-    }
-    if alive(i) {
+    if i < params.count && alive(i) {
         move_ball(i);
     }
-    put_instance(i);
 }
 
-// The instances of the balls as they stand, without a step.
+// The instances of the balls as they stand: after each step's flight, and
+// without a step.
 @compute @workgroup_size(256)
 fn write_instances(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
@@ -123,15 +120,38 @@ fn move_ball(i: u32) {
             let keep = select(0.0, 1.0 - loss / speed, speed > loss);
             v = dot(v, n) * n + tangential * keep;
             w *= keep;
-            if -dot(motion[VEL_START + i].xyz, n) > events_above {
+            let closing = -dot(motion[VEL_START + i].xyz, n);
+            if closing > events_above {
                 set_color(i, params.surface_colors + surface_of(n));
+                let foot = motion[POS + i].xyz - n * (r + wall.w);
+                report_impact(i, HIT_WALL, surface_of(n), foot, n, closing, closing_time(wall.w, closing));
             }
         }
         let b = ball_words[BODY_OF + i];
         if b != NONE && pushes[BODY_IMPULSE + i].w > 0.0 && bodies[b].info.x != FIREBALL {
-            let n = direction(motion[POS + i].xyz - bodies[b].sphere.xyz);
-            if -dot(motion[VEL_START + i].xyz, n) > events_above {
-                set_color(i, bodies[b].info.z);
+            let body = bodies[b];
+            let d = motion[POS + i].xyz - body.sphere.xyz;
+            let n = direction(d);
+            let point = body.sphere.xyz + n * body.sphere.w;
+            let closing = -dot(motion[VEL_START + i].xyz - body_point_velocity(body, point), n);
+            if closing > events_above {
+                set_color(i, body.info.z);
+                let gap = length(d) - r - body.sphere.w;
+                report_impact(i, HIT_BODY, body_code(body), point, n, closing, closing_time(gap, closing));
+            }
+        }
+        // Each pair the solver pushed, reported by its lower-numbered ball.
+        for (var k = 0u; k < slot_count(ball_words[STATE + i]); k++) {
+            let at = i * SLOTS + k;
+            let j = slot_words[SLOT_OTHER + at];
+            if j < i || slot_words[SLOT_MIRROR + at] == NONE || impulse_at(at).w <= 0.0 {
+                continue;
+            }
+            let g = pair_geometry(i, j);
+            let closing = -dot(motion[VEL_START + i].xyz - motion[VEL_START + j].xyz, g.xyz);
+            if closing > events_above {
+                let point = motion[POS + j].xyz + g.xyz * (motion[POS + j].w + 0.5 * max(g.w, 0.0));
+                report_impact(i, HIT_BALL, j, point, g.xyz, closing, closing_time(g.w, closing));
             }
         }
         var held = pushes[BODY_IMPULSE + i].w > 0.0;
@@ -218,6 +238,7 @@ fn move_ball(i: u32) {
         }
         if speed > events_above {
             set_color(i, params.surface_colors + hit);
+            report_impact(i, HIT_WALL, hit, x - r * n, n, speed, step - left);
         }
     }
     motion[POS + i] = vec4<f32>(clamp_into_room(x, r), r);

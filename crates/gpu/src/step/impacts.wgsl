@@ -72,6 +72,7 @@ fn meet(i: u32, round: u32) {
     } else {
         let bounce = bounce_in(i, round - 1u);
         v = bounce.velocity;
+        report_bounce(i, bounce);
         set_body_impact(i, body_impact_of(i) + bounce.push_on_body);
         if round < IMPACT_ROUNDS {
             put_vel(i, reads_back(round - 1u), v);
@@ -134,10 +135,30 @@ fn velocity_in(j: u32, round: u32) -> vec4<f32> {
 }
 
 // A ball after its bounce in a round (the velocity it starts it with, if
-// it does not bounce), and its push on its body there.
+// it does not bounce), and its push on its body there; and what it met
+// (HIT_WALL, HIT_BALL, HIT_BODY or NONE, and which), where, along which
+// normal (towards the ball), how fast and when.
 struct Bounce {
     velocity: vec4<f32>,
     push_on_body: f32,
+    hit: u32,
+    other: u32,
+    point: vec3<f32>,
+    normal: vec3<f32>,
+    speed: f32,
+    within: f32,
+}
+
+fn no_bounce(v: vec4<f32>) -> Bounce {
+    return Bounce(v, 0.0, NONE, NONE, vec3<f32>(0.0), vec3<f32>(0.0), 0.0, 0.0);
+}
+
+// Ball i's bounce reported, if it met something fast enough; a pair's by
+// its lower-numbered ball.
+fn report_bounce(i: u32, b: Bounce) {
+    if b.hit != NONE && b.speed > params.grid.w && (b.hit != HIT_BALL || i < b.other) {
+        report_impact(i, b.hit, b.other, b.point, b.normal, b.speed, b.within);
+    }
 }
 
 // Ball j after round `round`: it bounces off its first contact if that is
@@ -150,14 +171,14 @@ fn bounce_in(j: u32, round: u32) -> Bounce {
     let v = vel_in(j, back);
     let first = ball_words[FIRST_CONTACT + first_place(j, round)];
     if first == NONE {
-        return Bounce(v, 0.0);
+        return no_bounce(v);
     }
     let im = v.w;
     if first < FIRST_WALL {
         let at = j * SLOTS + first;
         let other = slot_words[SLOT_OTHER + at];
         if ball_words[FIRST_CONTACT + first_place(other, round)] != slot_words[SLOT_MIRROR + at] - other * SLOTS {
-            return Bounce(v, 0.0);
+            return no_bounce(v);
         }
         // Worked out alike by both balls, from the lower-numbered's side.
         let a = min(j, other);
@@ -168,21 +189,27 @@ fn bounce_in(j: u32, round: u32) -> Bounce {
         let approach = -dot(va.xyz - vb.xyz, g.xyz);
         let impulse = (1.0 + params.material.x) * approach / (va.w + vb.w);
         let change = impulse * im * g.xyz * select(-1.0, 1.0, j == a);
-        return Bounce(vec4<f32>(v.xyz + change, im), 0.0);
+        // Reported by a, from b towards it.
+        let point = motion[POS + b].xyz + g.xyz * (motion[POS + b].w + 0.5 * max(g.w, 0.0));
+        return Bounce(vec4<f32>(v.xyz + change, im), 0.0, HIT_BALL, b, point, g.xyz, approach, closing_time(g.w, approach));
     }
     let p = motion[POS + j].xyz;
     let r = motion[POS + j].w;
     if first < FIRST_BODY {
-        let n = nearest_wall(p, r, first - FIRST_WALL).xyz;
-        let change = (1.0 + params.material.z) * -dot(v.xyz, n) * n;
-        return Bounce(vec4<f32>(v.xyz + change, im), 0.0);
+        let wall = nearest_wall(p, r, first - FIRST_WALL);
+        let n = wall.xyz;
+        let approach = -dot(v.xyz, n);
+        let change = (1.0 + params.material.z) * approach * n;
+        let foot = p - n * (r + wall.w);
+        return Bounce(vec4<f32>(v.xyz + change, im), 0.0, HIT_WALL, surface_of(n), foot, n, approach, closing_time(wall.w, approach));
     }
     let body = bodies[ball_words[BODY_OF + j]];
     let n = direction(p - body.sphere.xyz);
     let point = body.sphere.xyz + n * body.sphere.w;
     let approach = -dot(v.xyz - body_point_velocity(body, point), n);
     let impulse = (1.0 + params.more.y) * approach / (im + body_inverse_mass(body, point, n));
-    return Bounce(vec4<f32>(v.xyz + impulse * im * n, im), impulse);
+    let gap = length(p - body.sphere.xyz) - r - body.sphere.w;
+    return Bounce(vec4<f32>(v.xyz + impulse * im * n, im), impulse, HIT_BODY, body_code(body), point, n, approach, closing_time(gap, approach));
 }
 
 // An impact's rank: sooner first, then by the lower and the higher number

@@ -18,7 +18,7 @@ pub use solve::SweepCounts;
 use std::cell::RefCell;
 
 use crate::bindings::{Buffers, compute_buffer};
-use crate::layout::{BRICK, SLOTS, groups};
+use crate::layout::{BRICK, HIT_BALL, HIT_BODY, HIT_WALL, IMPACT_CAPACITY, SLOTS, groups};
 use crate::profile::{Stage, StageTimer};
 
 /// What one pipeline of the engine binds: the numbers an adapter's limits
@@ -69,7 +69,10 @@ impl<'a> Shaders<'a> {
             buffers,
             layouts: RefCell::new(Vec::new()),
             common: format!(
-                "const SLOTS: u32 = {SLOTS}u;\nconst BRICK = vec3<u32>({}u, {}u, {}u);\n{}{}",
+                "const SLOTS: u32 = {SLOTS}u;\nconst BRICK = vec3<u32>({}u, {}u, {}u);\n\
+                 const IMPACT_CAPACITY: u32 = {IMPACT_CAPACITY}u;\n\
+                 const HIT_WALL: u32 = {HIT_WALL}u;\nconst HIT_BALL: u32 = {HIT_BALL}u;\n\
+                 const HIT_BODY: u32 = {HIT_BODY}u;\n{}{}",
                 BRICK[0],
                 BRICK[1],
                 BRICK[2],

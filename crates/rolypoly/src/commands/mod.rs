@@ -81,7 +81,7 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
             args,
         ),
         Some(Command::Sound(_)) if gpu => anyhow::bail!(
-            "the GPU engine does not report the balls' impacts, so its balls make no sound: make the sound with --engine cpu"
+            "the GPU engine's balls are not kept on the CPU, where the sound reads each ball's size and place, so they make no sound: make the sound with --engine cpu"
         ),
         Some(Command::Sound(args)) => sound::sound(
             Simulation::new(world, scene.effects, seed),

@@ -43,7 +43,10 @@ pub fn simulate(
     }
     let mut balls = if gpu {
         let compute = Compute::headless()?;
-        Some(GpuBalls::on_compute(&compute, &mut sim.world)?)
+        let mut balls = GpuBalls::on_compute(&compute, &mut sim.world)?;
+        // The impacts are counted as the CPU engine's are.
+        balls.listen(true);
+        Some(balls)
     } else {
         None
     };
