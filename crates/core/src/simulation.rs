@@ -74,6 +74,24 @@ impl Simulation {
         self.gpu = Some(Arc::new(Mutex::new(balls)));
     }
 
+    /// `report` on the simulation with every ball in its world: on the GPU
+    /// engine the balls are read back (a wait on the GPU) and put into the
+    /// world for the while.
+    pub fn with_balls<T>(&mut self, report: impl FnOnce(&Simulation) -> T) -> Result<T, GpuError> {
+        let Some(gpu) = self.gpu.clone() else {
+            return Ok(report(self));
+        };
+        let balls = gpu
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
+            .read()?
+            .to_balls();
+        self.world.put_balls(balls);
+        let out = report(self);
+        self.world.take_balls();
+        Ok(out)
+    }
+
     /// Whether the GPU engine steps the balls.
     pub fn on_gpu(&self) -> bool {
         self.gpu.is_some()

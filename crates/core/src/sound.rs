@@ -5,6 +5,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 
 use anyhow::Context;
+use rolypoly_gpu::GpuError;
 use rolypoly_render::Camera;
 use rolypoly_sound::{Listener, SoundConfig, Soundtrack, write_wav};
 
@@ -36,11 +37,13 @@ impl Recording {
         }
     }
 
-    /// Hears the step `sim` just took.
-    pub fn hear(&mut self, sim: &Simulation) {
-        self.track
-            .hear_step(&sim.world, sim.last_events(), &self.listener);
+    /// Hears the step `sim` just took. On the GPU engine its balls are read
+    /// back for it: the sound reads each struck ball's size and place.
+    pub fn hear(&mut self, sim: &mut Simulation) -> Result<(), GpuError> {
+        let (track, listener) = (&mut self.track, &self.listener);
+        sim.with_balls(|sim| track.hear_step(&sim.world, sim.last_events(), listener))?;
         self.frames.append(&mut self.track.take_frames());
+        Ok(())
     }
 
     /// The samples so far, left and right.
@@ -54,12 +57,19 @@ impl Recording {
     }
 }
 
-/// Steps `sim` `steps` times, hearing each step.
-pub fn ticks_heard(sim: &mut Simulation, steps: u64, recording: &mut Recording) {
+/// Steps `sim` `steps` times, hearing each step; a GPU engine that fails
+/// stops it, and says why.
+pub fn ticks_heard(
+    sim: &mut Simulation,
+    steps: u64,
+    recording: &mut Recording,
+) -> anyhow::Result<()> {
     for _ in 0..steps {
         sim.tick();
-        recording.hear(sim);
+        sim.check_gpu()?;
+        recording.hear(sim)?;
     }
+    Ok(())
 }
 
 /// Writes `out`, the MP4 `video` with the WAV `sound` as its sound track

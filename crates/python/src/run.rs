@@ -152,15 +152,14 @@ impl Run {
     /// `rolypoly simulate` does for its trace.
     pub fn with_balls<T>(
         &mut self,
-        report: impl FnOnce(&PhysicsWorld) -> T,
+        report: impl FnOnce(&mut Simulation) -> T,
     ) -> Result<T, GpuError> {
-        let world = &mut self.sim.world;
         let Some(gpu) = &self.gpu else {
-            return Ok(report(world));
+            return Ok(report(&mut self.sim));
         };
-        world.put_balls(gpu.read()?.to_balls());
-        let out = report(world);
-        world.take_balls();
+        self.sim.world.put_balls(gpu.read()?.to_balls());
+        let out = report(&mut self.sim);
+        self.sim.world.take_balls();
         Ok(out)
     }
 }

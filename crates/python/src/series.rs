@@ -29,7 +29,7 @@ pub fn samples(run: &mut Run, steps: u64, every: u64) -> PyResult<Vec<Sample>> {
 fn sample(run: &mut Run, events: &[Event]) -> PyResult<Sample> {
     let gpu = run.on_gpu();
     let sample = run
-        .with_balls(|w| Sample::of(w, events))
+        .with_balls(|sim| Sample::of(&sim.world, events))
         .map_err(|e| gpu_error(&e))?;
     Ok(if gpu {
         sample.without_impulses()

@@ -20,8 +20,8 @@ const MAX_SECONDS: f64 = 3600.0;
 /// that :func:`render` draws from), as ``rolypoly sound`` makes it: a
 /// (frames, 2) float32 array of left and right samples at 48 000 a second,
 /// each within ±0.891 (-1 dBFS). The scene's ``sound.*`` keys set the
-/// volume and the materials. A world on the GPU engine is refused: its
-/// balls' sizes and places are not kept on the CPU.
+/// volume and the materials. A world on the GPU engine has its balls read
+/// back each step to be heard.
 #[pyfunction]
 #[pyo3(signature = (world, seconds, camera=None))]
 pub fn sound<'py>(
@@ -38,11 +38,6 @@ pub fn sound<'py>(
     let eye_target = camera.map(read_camera).transpose()?;
     let mut world = world.try_borrow_mut()?;
     let run = &mut world.run;
-    if run.gpu.is_some() {
-        return Err(value_error(
-            "the GPU engine's balls are not kept on the CPU, where the sound reads each ball's size and place, so they make no sound: make the world with engine=\"cpu\"",
-        ));
-    }
     let camera = chosen_camera(
         eye_target.map(|(e, t)| [e.x, e.y, e.z, t.x, t.y, t.z]),
         run.sim.world.config(),
@@ -52,7 +47,7 @@ pub fn sound<'py>(
         let mut recording = Recording::new(&run.scene.data.sound, &run.sim, listener_of(&camera));
         for _ in 0..steps {
             run.tick()?;
-            recording.hear(&run.sim);
+            run.with_balls(|sim| recording.hear(sim))??;
         }
         Ok::<_, GpuError>(recording.frames().to_vec())
     });

@@ -203,7 +203,7 @@ impl World {
     fn energy(&mut self) -> PyResult<Energy> {
         let energy = self
             .run
-            .with_balls(|world| world.energy())
+            .with_balls(|sim| sim.world.energy())
             .map_err(|e| gpu_error(&e))?;
         Ok(Energy {
             kinetic: energy.kinetic,

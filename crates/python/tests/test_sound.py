@@ -36,6 +36,16 @@ def test_the_sound_is_the_programs(tmp_path, seed):
     assert abs(world.time - 0.75) < 1e-9, "the world stepped on"
 
 
+@pytest.mark.parametrize("seed", [2, 6])
+def test_the_gpu_engines_balls_are_heard_as_the_programs(tmp_path, seed):
+    out = tmp_path / "gpu.wav"
+    run_bin("--engine", "gpu", "sound", "--seconds", "0.75", "--seed", str(seed), "--out", str(out))
+    frames = rolypoly.sound(rolypoly.World(seed=seed, engine="gpu"), 0.75)
+    assert frames.shape == (36000, 2)
+    assert np.abs(frames).max() > 0.001, "the balls are heard"
+    assert np.array_equal(pcm(frames), read_wav(out))
+
+
 def test_sound_keys_and_bad_arguments():
     quiet = rolypoly.World(rolypoly.Scene.default({"sound.enabled": False}))
     assert not rolypoly.sound(quiet, 0.2).any()

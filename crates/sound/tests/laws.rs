@@ -2,12 +2,14 @@
 //! once at its moment, pitch against size, loudness against speed and side,
 //! silence after rest, and the same samples on every run.
 
+mod spectrum;
+
 use glam::DVec3;
 use rolypoly_physics::{BallPlacement, Event, EventKind, TumblerPlacement, World, WorldConfig};
 use rolypoly_sound::{
     CEILING, Listener, SAMPLE_RATE, SPEED_OF_SOUND, SoundConfig, Soundtrack, to_pcm,
 };
-use rustfft::{FftPlanner, num_complex::Complex};
+use spectrum::spectral_peak;
 
 const RATE: f64 = SAMPLE_RATE as f64;
 
@@ -140,27 +142,6 @@ fn each_loud_impact_is_heard_once_at_its_moment() {
             );
         }
     }
-}
-
-/// The frequency (Hz) of the loudest bin of `signal` between `low` and
-/// `high`, refined by a parabola through its neighbours.
-fn spectral_peak(signal: &[f32], low: f64, high: f64) -> f64 {
-    let n = signal.len().next_power_of_two();
-    let mut data: Vec<Complex<f32>> = signal.iter().map(|&x| Complex::new(x, 0.0)).collect();
-    data.resize(n, Complex::new(0.0, 0.0));
-    FftPlanner::new().plan_fft_forward(n).process(&mut data);
-    let bin = RATE / n as f64;
-    let (lo, hi) = ((low / bin) as usize, (high / bin) as usize);
-    let magnitude = |k: usize| data[k].norm() as f64;
-    let k = (lo..hi)
-        .max_by(|&a, &b| magnitude(a).total_cmp(&magnitude(b)))
-        .unwrap();
-    let (a, b, c) = (
-        magnitude(k - 1).ln(),
-        magnitude(k).ln(),
-        magnitude(k + 1).ln(),
-    );
-    (k as f64 + 0.5 * (a - c) / (a - 2.0 * b + c)) * bin
 }
 
 /// The sound of one ball of `radius` dropped onto the floor, from its

@@ -131,6 +131,9 @@ mod tests {
             .to_string();
         assert!(err.contains("storage buffer binding size"), "{err}");
         assert!(err.contains("fewer balls"), "{err}");
-        assert!(err.contains("288000000"), "{err}");
+        // A ball's six vectors, 96 bytes, and the step's impact reports.
+        let need = 96 * 3_000_000 + 3 * 16 * crate::layout::IMPACT_CAPACITY;
+        assert_eq!(sizes(3_000_000).largest_buffer(), need);
+        assert!(err.contains(&need.to_string()), "{err}");
     }
 }

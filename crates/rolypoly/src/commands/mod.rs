@@ -80,12 +80,10 @@ pub fn run(cli: &Cli) -> anyhow::Result<()> {
             gpu,
             args,
         ),
-        Some(Command::Sound(_)) if gpu => anyhow::bail!(
-            "the GPU engine's balls are not kept on the CPU, where the sound reads each ball's size and place, so they make no sound: make the sound with --engine cpu"
-        ),
         Some(Command::Sound(args)) => sound::sound(
             Simulation::new(world, scene.effects, seed),
             &scene.sound,
+            gpu,
             args,
         ),
         Some(Command::Replay(args)) => replay::replay(args, &cli.window, cli.scene.engine),

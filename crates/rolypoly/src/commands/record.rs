@@ -52,7 +52,7 @@ pub fn record(
         // Frame k shows the moment k / fps, the same step `render --time`
         // would stop at.
         let steps = steps_for(f64::from(k) / f64::from(args.clip.fps), dt);
-        ticks_heard(sim, steps - steps_done, &mut recording);
+        ticks_heard(sim, steps - steps_done, &mut recording)?;
         steps_done = steps;
         sim.check_gpu()?;
         if k == 0 {
@@ -65,7 +65,7 @@ pub fn record(
     })?;
     // The last frame is shown for 1 / fps: the sound runs to its end.
     let end = steps_for(f64::from(count) / f64::from(args.clip.fps), dt);
-    ticks_heard(sim, end - steps_done, &mut recording);
+    ticks_heard(sim, end - steps_done, &mut recording)?;
     if let Some(audio) = &args.audio {
         recording.write_wav(audio)?;
     }

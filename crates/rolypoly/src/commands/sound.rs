@@ -8,15 +8,24 @@ use crate::sound::{Recording, listener_of, ticks_heard};
 use rolypoly_sound::SoundConfig;
 
 /// The sound of `sim` for `args.seconds`, heard from the camera `--camera`
-/// gives (or the overview), as `config` says, into `args.out`.
-pub fn sound(mut sim: Simulation, config: &SoundConfig, args: &SoundArgs) -> anyhow::Result<()> {
+/// gives (or the overview), as `config` says, into `args.out`; with `gpu`,
+/// the balls stepped on the GPU engine (and read back to be heard).
+pub fn sound(
+    mut sim: Simulation,
+    config: &SoundConfig,
+    gpu: bool,
+    args: &SoundArgs,
+) -> anyhow::Result<()> {
+    if gpu {
+        sim.move_balls_to_compute(&rolypoly_gpu::Compute::headless()?)?;
+    }
     if args.fireball {
         sim.world.launch_fireball(None);
     }
     let camera = chosen_camera(args.camera, sim.world.config());
     let mut recording = Recording::new(config, &sim, listener_of(&camera));
     let steps = steps_for(args.seconds, sim.world.config().solver.dt);
-    ticks_heard(&mut sim, steps, &mut recording);
+    ticks_heard(&mut sim, steps, &mut recording)?;
     recording.write_wav(&args.out)?;
     let frames = recording.frames();
     let loudest = frames
