@@ -657,11 +657,25 @@ impl GpuBalls {
                     .filter_map(impact_event),
             );
             // In the atomics' order as written: put in the order of when
-            // within the step, then the ball's and the other's numbers.
+            // within the step, then the ball's and the other's numbers, then
+            // (a ball may report one contact twice at one moment: its bounce
+            // in the impacts, and the solver's push) every other number.
             self.events[first..].sort_by(|a, b| {
+                let numbers = |e: &Event| {
+                    [e.speed, e.point.x, e.point.y, e.point.z]
+                        .into_iter()
+                        .chain([e.normal.x, e.normal.y, e.normal.z])
+                };
                 a.within_step
                     .total_cmp(&b.within_step)
                     .then_with(|| impact_key(a).cmp(&impact_key(b)))
+                    .then_with(|| {
+                        numbers(a)
+                            .zip(numbers(b))
+                            .map(|(x, y)| x.total_cmp(&y))
+                            .find(|o| o.is_ne())
+                            .unwrap_or(std::cmp::Ordering::Equal)
+                    })
             });
             self.impacts_dropped += u64::from(count).saturating_sub(IMPACT_CAPACITY);
         }

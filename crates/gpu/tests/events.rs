@@ -108,6 +108,29 @@ fn cpu_impacts(config: WorldConfig, seed: u64, steps: u32) -> usize {
 }
 
 #[test]
+fn a_rerun_reports_the_same_impacts_in_the_same_order() {
+    // Five tumblers and the fireball among 300 balls: many impacts at one
+    // moment, appended by the atomics in any order.
+    let mut config = WorldConfig::default();
+    config.balls.count = 300;
+    config.fireball.starts_active = true;
+    for seed in [1, 4] {
+        let first = gpu_impacts(config.clone(), seed, 240);
+        assert!(first.len() > 100, "seed {seed}: {} impacts", first.len());
+        let again = gpu_impacts(config.clone(), seed, 240);
+        let differ = first.iter().zip(&again).position(|(a, b)| a != b);
+        assert!(
+            first.len() == again.len() && differ.is_none(),
+            "seed {seed}: {} then {} impacts, first differing {differ:?}: {:?} against {:?}",
+            first.len(),
+            again.len(),
+            differ.map(|k| first[k]),
+            differ.map(|k| again[k])
+        );
+    }
+}
+
+#[test]
 fn the_default_scene_sounds_as_often_as_on_the_cpu_engine() {
     let steps = 600; // 5 s
     for seed in [1, 2, 3] {

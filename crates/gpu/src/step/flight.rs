@@ -1,13 +1,15 @@
 //! Stage 6, the flight (`flight.wgsl`): balls a contact held move at their
 //! solved velocity; others fly their exact parabola, bouncing exactly off
 //! the walls; each from where the solver shifted it, its impacts
-//! reported. A second pass writes what the renderer draws (in one, the
-//! pass would bind more buffers than WebGPU promises).
+//! reported (the pairs' in a pass before, as the flight moves the other
+//! ball). A last pass writes what the renderer draws (in one, the flight
+//! would bind more buffers than WebGPU promises).
 
 use super::{Kernel, Recorder, Shaders};
 use crate::profile::Stage;
 
 pub struct Flight {
+    report_pairs: Kernel,
     fly: Kernel,
     write_instances: Kernel,
 }
@@ -16,6 +18,7 @@ impl Flight {
     pub fn new(shaders: &Shaders) -> Flight {
         let module = shaders.module("flight", &[], include_str!("flight.wgsl"));
         Flight {
+            report_pairs: shaders.pipeline(&module, "report_pairs"),
             fly: shaders.pipeline(&module, "fly"),
             write_instances: shaders.pipeline(&module, "write_instances"),
         }
@@ -23,6 +26,7 @@ impl Flight {
 
     pub fn record(&self, step: &mut Recorder) {
         step.stage(Stage::Flight, |pass| {
+            pass.over_balls(&self.report_pairs);
             pass.over_balls(&self.fly);
             pass.over_balls(&self.write_instances);
         });

@@ -66,7 +66,31 @@ fn normal_of(surface: u32) -> vec3<f32> {
     return n;
 }
 
-// Each ball moved, its impacts reported.
+// Each pair the solver pushed that closed faster than the event threshold,
+// reported by its lower-numbered ball: a pass before the flight, which
+// moves the other ball as this one reads it.
+@compute @workgroup_size(256)
+fn report_pairs(@builtin(global_invocation_id) id: vec3<u32>) {
+    let i = ball_index(id);
+    if !in_solver(i) {
+        return;
+    }
+    for (var k = 0u; k < slot_count(ball_words[STATE + i]); k++) {
+        let at = i * SLOTS + k;
+        let j = slot_words[SLOT_OTHER + at];
+        if j < i || slot_words[SLOT_MIRROR + at] == NONE || impulse_at(at).w <= 0.0 {
+            continue;
+        }
+        let g = pair_geometry(i, j);
+        let closing = -dot(motion[VEL_START + i].xyz - motion[VEL_START + j].xyz, g.xyz);
+        if closing > params.grid.w {
+            let point = motion[POS + j].xyz + g.xyz * (motion[POS + j].w + 0.5 * max(g.w, 0.0));
+            report_impact(i, HIT_BALL, j, point, g.xyz, closing, closing_time(g.w, closing));
+        }
+    }
+}
+
+// Each ball moved, its impacts with walls and tumblers reported.
 @compute @workgroup_size(256)
 fn fly(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = ball_index(id);
@@ -138,20 +162,6 @@ fn move_ball(i: u32) {
                 set_color(i, body.info.z);
                 let gap = length(d) - r - body.sphere.w;
                 report_impact(i, HIT_BODY, body_code(body), point, n, closing, closing_time(gap, closing));
-            }
-        }
-        // Each pair the solver pushed, reported by its lower-numbered ball.
-        for (var k = 0u; k < slot_count(ball_words[STATE + i]); k++) {
-            let at = i * SLOTS + k;
-            let j = slot_words[SLOT_OTHER + at];
-            if j < i || slot_words[SLOT_MIRROR + at] == NONE || impulse_at(at).w <= 0.0 {
-                continue;
-            }
-            let g = pair_geometry(i, j);
-            let closing = -dot(motion[VEL_START + i].xyz - motion[VEL_START + j].xyz, g.xyz);
-            if closing > events_above {
-                let point = motion[POS + j].xyz + g.xyz * (motion[POS + j].w + 0.5 * max(g.w, 0.0));
-                report_impact(i, HIT_BALL, j, point, g.xyz, closing, closing_time(g.w, closing));
             }
         }
         var held = pushes[BODY_IMPULSE + i].w > 0.0;
