@@ -1,12 +1,14 @@
 //! The rolypoly toy room as a library, below the program and the Python
 //! package: scene files (their keys, defaults and checks), the run that
-//! steps the world and its effects on either engine ([`simulation`]),
+//! steps the world and its effects ([`simulation`]) with its balls on
+//! either engine ([`balls`]),
 //! its state as bytes ([`snapshot`]), traces of it, and what both front ends draw and hear of a run (the
 //! frames of a moment, clips, the sound). No command line, no window, no
 //! audio device.
 
 #![warn(missing_docs)]
 
+pub mod balls;
 pub mod clip;
 pub mod engine;
 pub mod frames;

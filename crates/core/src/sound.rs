@@ -5,7 +5,9 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 
 use anyhow::Context;
+use glam::DVec3;
 use rolypoly_gpu::GpuError;
+use rolypoly_physics::{Balls, EventKind};
 use rolypoly_render::Camera;
 use rolypoly_sound::{Listener, SoundConfig, Soundtrack, write_wav};
 
@@ -54,6 +56,56 @@ impl Recording {
     /// Writes the samples to the WAV file `path`.
     pub fn write_wav(&self, path: &Path) -> anyhow::Result<()> {
         write_wav(path, &self.frames).with_context(|| format!("cannot write `{}`", path.display()))
+    }
+}
+
+/// The GPU engine's balls as the live sound hears them without reading
+/// them back each step (a million balls would stall the frame): their
+/// sizes and masses, read back once and again when their count changes
+/// (a throw, a restart), each standing still where it last struck. So a
+/// struck ball rings at its pitch and loudness from where it struck; the
+/// balls' rolling, which needs their motion, is not heard. A recording
+/// reads the balls back every step instead ([`Recording::hear`]).
+#[derive(Default)]
+pub struct StandIns {
+    balls: Balls,
+}
+
+impl StandIns {
+    /// The stand-ins for `sim`'s balls after its last step: moved to where
+    /// its events struck them.
+    pub fn after_step(&mut self, sim: &Simulation) -> Result<&Balls, GpuError> {
+        if self.balls.len() != sim.ball_count() {
+            let mut balls = sim.balls.read(&sim.world)?.into_owned();
+            for i in 0..balls.len() {
+                let at = balls.positions()[i];
+                balls.set(i, at, DVec3::ZERO);
+            }
+            self.balls = balls;
+        }
+        let radius = |i: usize| self.balls.radii().get(i).copied();
+        let mut moved = Vec::new();
+        for event in sim.last_events() {
+            // The normal points from what a ball met towards the ball.
+            let (p, n) = (event.point, event.normal);
+            match event.kind {
+                EventKind::BallSurface { ball, .. } | EventKind::BallTumbler { ball, .. } => {
+                    moved.extend(radius(ball).map(|r| (ball, p + n * r)));
+                }
+                EventKind::BallBall { a, b } => {
+                    moved.extend(radius(a).map(|r| (a, p + n * r)));
+                    moved.extend(radius(b).map(|r| (b, p - n * r)));
+                }
+                EventKind::FireballBall { ball } if radius(ball).is_some() => {
+                    moved.push((ball, p));
+                }
+                _ => {}
+            }
+        }
+        for (ball, at) in moved {
+            self.balls.set(ball, at, DVec3::ZERO);
+        }
+        Ok(&self.balls)
     }
 }
 

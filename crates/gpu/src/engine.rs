@@ -5,24 +5,27 @@ use crate::GpuError;
 use crate::bindings::{Buffers, Sizes};
 use crate::device::describe;
 use crate::layout::{
-    Body, Catch, EVENT_CAPACITY, FIREBALL, HIT_BALL, HIT_BODY, HIT_WALL, IMPACT_CAPACITY,
-    IMPACT_ROUNDS, Impact, Params, grid_cells,
+    Body, Catch, EVENT_CAPACITY, FIREBALL, IMPACT_CAPACITY, IMPACT_ROUNDS, Impact, Params,
+    grid_cells,
 };
 use crate::profile::StageTimer;
 use crate::readback::read_buffer;
 use crate::step::{PassLayout, Stages, SweepCounts};
 use crate::wait::WaitBound;
 use glam::{DVec3, Vec3};
-use rolypoly_physics::{Balls, Event, EventKind, Tint, World};
+use rolypoly_physics::{Balls, Event, Tint, World};
 
 mod ball_state;
 mod limits;
 mod palette;
+mod reports;
 mod snapshot;
 
 pub use ball_state::BallState;
 use limits::check_limits;
 use palette::PaletteLayout;
+pub use reports::{REPORT_DELAY, StepReport};
+use reports::{ReportRing, catches_at, impacts_at};
 pub use snapshot::GpuSnapshot;
 
 /// Thrown balls a run can add on top of its scene's.
@@ -93,8 +96,8 @@ pub struct GpuBalls {
     palette_layout: PaletteLayout,
     /// Worlds of up to this many balls sweep in one workgroup.
     small_world_balls: u32,
-    /// The buffer the step's pushes, catches and impacts come back in.
-    report: wgpu::Buffer,
+    /// The steps' reports of pushes, catches and impacts on their way back.
+    reports: ReportRing,
     /// The catches and impacts reported and not yet taken.
     events: Vec<Event>,
     /// Whether each step's impacts are read back.
@@ -238,12 +241,7 @@ impl GpuBalls {
             step: 0,
             solve_relaxation: SOLVE_RELAXATION,
         };
-        let report = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("step report"),
-            size: report_size(tumblers),
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let reports = ReportRing::new(&device, tumblers);
         let mut engine = GpuBalls {
             device,
             queue,
@@ -256,7 +254,7 @@ impl GpuBalls {
             palette,
             palette_layout,
             small_world_balls: SMALL_WORLD_BALLS,
-            report,
+            reports,
             events: Vec::new(),
             listening: false,
             impacts_dropped: 0,
@@ -444,11 +442,12 @@ impl GpuBalls {
     }
 
     /// One step of the balls, against the tumblers and fireball where
-    /// `world` has them now. The tumblers' pushes from the balls come back
-    /// at the end of the step and are given to `world`'s tumblers, which
-    /// feel them from their next step on; the balls the fireball caught are
-    /// reported, and the balls' impacts where it listens (see
-    /// [`GpuBalls::take_events`]).
+    /// `world` has them now. It is queued, not waited for: the step's
+    /// report (the tumblers' pushes from the balls, the balls the fireball
+    /// caught, the impacts where it listens) is taken [`REPORT_DELAY`]
+    /// steps later, when its pushes are given to `world`'s tumblers and its
+    /// events to [`GpuBalls::take_events`]. A report not back by then is
+    /// waited for, and counted ([`GpuBalls::blocking_waits`]).
     pub fn step(&mut self, world: &mut World) -> Result<(), GpuError> {
         self.step_timed(world, None)
     }
@@ -467,9 +466,10 @@ impl GpuBalls {
             q.write_buffer(&self.buffers.bodies, 0, bytemuck::cast_slice(&bodies));
         }
         q.write_buffer(&self.buffers.params, 0, bytemuck::bytes_of(&self.params));
-        if catching {
-            self.write_section("EVENT_COUNT", 0, &[0; 4]);
-        }
+        // Cleared whether or not the fireball catches this step: a report
+        // copies the count, and a count left from the last catching step
+        // would report its catches again.
+        self.write_section("EVENT_COUNT", 0, &[0; 4]);
         self.write_section("IMPACT_EVENTS", 0, &[0; 4]);
         self.write_section(
             "IMPACT_COUNT",
@@ -489,37 +489,72 @@ impl GpuBalls {
             timer.resolve(&mut encoder);
         }
         let report = self.tumblers > 0 || catching || self.listening;
+        let mut sent = None;
         if report {
+            let (slot, buffer) = self.reports.take_buffer(&self.device);
             let push = 32 * self.tumblers as u64;
-            encoder.copy_buffer_to_buffer(&self.buffers.tumbler_push, 0, &self.report, 0, push);
+            encoder.copy_buffer_to_buffer(&self.buffers.tumbler_push, 0, buffer, 0, push);
+            let at = catches_at(self.tumblers);
             let (counters, event_count) = self.buffers.section("EVENT_COUNT");
-            encoder.copy_buffer_to_buffer(counters, event_count, &self.report, push, 16);
+            encoder.copy_buffer_to_buffer(counters, event_count, buffer, at, 16);
             encoder.copy_buffer_to_buffer(
                 &self.buffers.events,
                 0,
-                &self.report,
-                push + 16,
+                buffer,
+                at + 16,
                 EVENT_CAPACITY * std::mem::size_of::<Catch>() as u64,
             );
             if self.listening {
                 let at = impacts_at(self.tumblers);
                 let (counters, count) = self.buffers.section("IMPACT_EVENTS");
-                encoder.copy_buffer_to_buffer(counters, count, &self.report, at, 4);
+                encoder.copy_buffer_to_buffer(counters, count, buffer, at, 4);
                 let (pushes, impacts) = self.buffers.section("IMPACTS");
                 encoder.copy_buffer_to_buffer(
                     pushes,
                     impacts,
-                    &self.report,
+                    buffer,
                     at + 16,
                     IMPACT_CAPACITY * std::mem::size_of::<Impact>() as u64,
                 );
             }
+            sent = Some(slot);
         }
-        self.queue.submit([encoder.finish()]);
+        let submission = self.queue.submit([encoder.finish()]);
+        if let Some(slot) = sent {
+            self.reports
+                .sent(self.steps, slot, self.listening, submission);
+        }
         self.steps += 1;
-        if report {
-            self.take_report(world)?;
+        for report in self.reports.due(&self.device, &self.wait, self.steps)? {
+            self.apply(world, report);
         }
+        Ok(())
+    }
+
+    /// Gives each tumbler its push from a step's report and keeps the
+    /// report's events to be taken.
+    fn apply(&mut self, world: &mut World, mut report: StepReport) {
+        for (t, &(impulse, moment, pushing_mass)) in report.pushes.iter().enumerate() {
+            world.push_tumbler(t, impulse, moment, pushing_mass);
+        }
+        self.events.append(&mut report.events);
+        self.impacts_dropped += report.impacts_dropped;
+    }
+
+    /// Times a step found the report it was due to take not yet back from
+    /// the GPU and waited for it: none a step where the GPU keeps up with
+    /// the steps asked of it.
+    pub fn blocking_waits(&self) -> u64 {
+        self.reports.waits()
+    }
+
+    /// Waits for the reports of the last steps, still on their way, and
+    /// hands their events to [`GpuBalls::take_events`] now, not when due:
+    /// for a run that ends, or reads its balls back and wants every event
+    /// so far. Their pushes still reach the tumblers when due.
+    pub fn take_events_in_flight(&mut self) -> Result<(), GpuError> {
+        self.reports.read_all(&self.device, &self.wait)?;
+        self.reports.take_read_events(&mut self.events);
         Ok(())
     }
 
@@ -563,8 +598,8 @@ impl GpuBalls {
     /// Reports the balls' impacts from the next step on, or stops: each
     /// ball's with a wall, another ball or a tumbler closing faster than
     /// the scene's event threshold, as the CPU engine reports them (see
-    /// [`GpuBalls::take_events`]). A step's impacts are read back at its
-    /// end, so a listening engine waits for the GPU once a step.
+    /// [`GpuBalls::take_events`]). A step's impacts come back with its
+    /// report, [`REPORT_DELAY`] steps later.
     pub fn listen(&mut self, on: bool) {
         self.listening = on;
     }
@@ -592,94 +627,6 @@ impl GpuBalls {
         self.stages
             .write_instances(&mut encoder, u64::from(self.params.count));
         self.queue.submit([encoder.finish()]);
-    }
-
-    /// Reads the step's report: gives each tumbler its push, keeps the
-    /// catches and the impacts.
-    fn take_report(&mut self, world: &mut World) -> Result<(), GpuError> {
-        let step = self.steps;
-        let bytes = read_buffer(
-            &self.device,
-            &self.wait,
-            &self.report,
-            report_size(self.tumblers) as usize,
-            || {
-                format!(
-                    "the gpu engine's step {step} (its report of tumbler pushes, catches and impacts)"
-                )
-            },
-        )?;
-        let push: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes[..32 * self.tumblers]);
-        for t in 0..self.tumblers {
-            let [ix, iy, iz, pushing_mass] = push[2 * t];
-            let [mx, my, mz, _] = push[2 * t + 1];
-            let impulse = DVec3::new(ix.into(), iy.into(), iz.into());
-            let moment = DVec3::new(mx.into(), my.into(), mz.into());
-            world.push_tumbler(t, impulse, moment, pushing_mass.into());
-        }
-        let at = 32 * self.tumblers;
-        let count = u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
-        let caught: Vec<Catch> = bytemuck::pod_collect_to_vec(&bytes[at + 16..]);
-        let first = self.events.len();
-        for c in caught
-            .iter()
-            .take((count as usize).min(EVENT_CAPACITY as usize))
-        {
-            let [px, py, pz, ball] = c.point;
-            let [nx, ny, nz, speed] = c.normal;
-            self.events.push(Event {
-                kind: EventKind::FireballBall {
-                    ball: ball.to_bits() as usize,
-                },
-                point: DVec3::new(px.into(), py.into(), pz.into()),
-                normal: DVec3::new(nx.into(), ny.into(), nz.into()),
-                speed: speed.into(),
-                // The GPU engine does not say when within the step.
-                within_step: 0.0,
-            });
-        }
-        // The atomics set the order they were written in; the ball's number
-        // sets the order they are reported in.
-        self.events[first..].sort_by_key(|e| match e.kind {
-            EventKind::FireballBall { ball } => ball,
-            _ => usize::MAX,
-        });
-        if self.listening {
-            let at = impacts_at(self.tumblers) as usize;
-            let count =
-                u32::from_le_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
-            let impacts: Vec<Impact> = bytemuck::pod_collect_to_vec(&bytes[at + 16..]);
-            let first = self.events.len();
-            self.events.extend(
-                impacts
-                    .iter()
-                    .take((count as usize).min(IMPACT_CAPACITY as usize))
-                    .filter_map(impact_event),
-            );
-            // In the atomics' order as written: put in the order of when
-            // within the step, then the ball's and the other's numbers, then
-            // (a ball may report one contact twice at one moment: its bounce
-            // in the impacts, and the solver's push) every other number.
-            self.events[first..].sort_by(|a, b| {
-                let numbers = |e: &Event| {
-                    [e.speed, e.point.x, e.point.y, e.point.z]
-                        .into_iter()
-                        .chain([e.normal.x, e.normal.y, e.normal.z])
-                };
-                a.within_step
-                    .total_cmp(&b.within_step)
-                    .then_with(|| impact_key(a).cmp(&impact_key(b)))
-                    .then_with(|| {
-                        numbers(a)
-                            .zip(numbers(b))
-                            .map(|(x, y)| x.total_cmp(&y))
-                            .find(|o| o.is_ne())
-                            .unwrap_or(std::cmp::Ordering::Equal)
-                    })
-            });
-            self.impacts_dropped += u64::from(count).saturating_sub(IMPACT_CAPACITY);
-        }
-        Ok(())
     }
 
     /// The first `size` bytes of `buffer` (COPY_SRC), copied back once the
@@ -760,63 +707,4 @@ impl GpuBalls {
                 .collect(),
         })
     }
-}
-
-/// Bytes of the step report: two vectors a tumbler, the catch count
-/// (padded to 16), the catches, the impact count (padded to 16), the
-/// impacts.
-fn report_size(tumblers: usize) -> u64 {
-    impacts_at(tumblers) + 16 + IMPACT_CAPACITY * std::mem::size_of::<Impact>() as u64
-}
-
-/// Where the impact count starts in the step report.
-fn impacts_at(tumblers: usize) -> u64 {
-    32 * tumblers as u64 + 16 + EVENT_CAPACITY * std::mem::size_of::<Catch>() as u64
-}
-
-/// What orders a step's impacts reported at the same moment: the ball,
-/// then what it met.
-fn impact_key(e: &Event) -> (usize, u8, usize) {
-    match e.kind {
-        EventKind::BallSurface { ball, surface } => (ball, 0, surface.index()),
-        EventKind::BallBall { a, b } => (a, 1, b),
-        EventKind::BallTumbler {
-            ball,
-            tumbler,
-            sphere,
-        } => (ball, 2, tumbler * 64 + sphere),
-        _ => (usize::MAX, 3, 0),
-    }
-}
-
-/// An impact as the step reported it, as an event; `None` for a ball's
-/// bounce off the fireball, which the CPU engine does not report either.
-fn impact_event(impact: &Impact) -> Option<Event> {
-    let [px, py, pz, ball] = impact.point;
-    let [nx, ny, nz, speed] = impact.normal;
-    let [hit, other, within, _] = impact.info;
-    let ball = ball.to_bits() as usize;
-    let kind = match hit {
-        HIT_WALL => EventKind::BallSurface {
-            ball,
-            surface: *rolypoly_physics::Surface::ALL.get(other as usize)?,
-        },
-        HIT_BALL => EventKind::BallBall {
-            a: ball,
-            b: other as usize,
-        },
-        HIT_BODY if other & 0xffff != FIREBALL => EventKind::BallTumbler {
-            ball,
-            tumbler: (other & 0xffff) as usize,
-            sphere: (other >> 16) as usize,
-        },
-        _ => return None,
-    };
-    Some(Event {
-        kind,
-        point: DVec3::new(px.into(), py.into(), pz.into()),
-        normal: DVec3::new(nx.into(), ny.into(), nz.into()),
-        speed: speed.into(),
-        within_step: f32::from_bits(within).into(),
-    })
 }

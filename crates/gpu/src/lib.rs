@@ -50,7 +50,7 @@ mod step;
 mod wait;
 
 pub use device::{Compute, best_adapter, check_compute, describe, limits};
-pub use engine::{BallState, GpuBalls, GpuSnapshot, THROW_ROOM};
+pub use engine::{BallState, GpuBalls, GpuSnapshot, REPORT_DELAY, StepReport, THROW_ROOM};
 pub use error::GpuError;
 pub use profile::{STAGES, Stage};
 pub use step::PassLayout;

@@ -17,6 +17,8 @@ fn gpu_impacts(config: WorldConfig, seed: u64, steps: u32) -> Vec<Event> {
         step(&mut world, &mut balls);
         balls.take_events(&mut events);
     }
+    balls.take_events_in_flight().unwrap();
+    balls.take_events(&mut events);
     assert_eq!(balls.impacts_dropped(), 0);
     events.retain(|e| is_impact(&e.kind));
     events

@@ -92,34 +92,27 @@ impl Balls {
     /// none is.
     fn write(&self, py: Python<'_>, value: &Bound<'_, PyAny>, written: Written) -> PyResult<()> {
         let mut world = self.world.try_borrow_mut(py)?;
-        let run = &mut world.run;
-        let Some(gpu) = &mut run.gpu else {
-            let physics = &mut run.sim.world;
-            let new = read_vectors(value, written.name(), physics.balls().len())?;
-            let moved = changed(written.now(physics.balls()), &new);
-            written.check(physics, &new, &moved).map_err(value_error)?;
-            let balls = physics.balls_mut();
-            for i in moved {
-                let (position, velocity) = written.apply(balls, i, new[i]);
-                let spin = balls.spins()[i];
-                balls.set(i, position, velocity);
-                balls.set_spin(i, spin);
-            }
-            return Ok(());
-        };
+        let sim = &mut world.run.sim;
         // The GPU engine's balls are read back and put in the world while
         // they are checked, as `rolypoly simulate` puts them for its trace.
-        let balls = gpu.read().map_err(|e| gpu_error(&e))?.to_balls();
-        let new = read_vectors(value, written.name(), balls.len())?;
-        let moved = changed(written.now(&balls), &new);
-        let physics = &mut run.sim.world;
-        physics.put_balls(balls);
-        let checked = written.check(physics, &new, &moved);
-        let balls = physics.take_balls();
-        checked.map_err(value_error)?;
-        for i in moved {
-            let (position, velocity) = written.apply(&balls, i, new[i]);
-            gpu.set_ball(i, position, velocity)
+        let checked = sim
+            .with_balls(|sim| {
+                let balls = sim.world.balls();
+                let new = read_vectors(value, written.name(), balls.len())?;
+                let moved = changed(written.now(balls), &new);
+                written
+                    .check(&sim.world, &new, &moved)
+                    .map_err(value_error)?;
+                let set: Vec<_> = moved
+                    .into_iter()
+                    .map(|i| (i, written.apply(balls, i, new[i])))
+                    .collect();
+                Ok::<_, PyErr>(set)
+            })
+            .map_err(|e| gpu_error(&e))??;
+        for (i, (position, velocity)) in checked {
+            sim.balls
+                .set_ball(&mut sim.world, i, position, velocity)
                 .map_err(|e| gpu_error(&e))?;
         }
         Ok(())

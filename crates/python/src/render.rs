@@ -156,11 +156,14 @@ impl FrameOptions {
 /// The GPU engine's balls are drawn from a copy of the world that holds
 /// them, read back; None on the CPU engine.
 pub fn held_balls(run: &Run) -> PyResult<Option<Simulation>> {
-    let Some(gpu) = &run.gpu else {
+    let Some(gpu) = run.sim.balls.gpu_balls() else {
         return Ok(None);
     };
     let balls = gpu.read().map_err(|e| gpu_error(&e))?.to_balls();
+    drop(gpu);
     let mut sim = run.sim.clone();
+    // A copy that draws its balls from the world, not from the GPU.
+    sim.balls = Default::default();
     sim.world.put_balls(balls);
     Ok(Some(sim))
 }

@@ -8,7 +8,7 @@ use std::borrow::Cow;
 use rolypoly_core::engine::Engine;
 use rolypoly_core::simulation::Simulation;
 use rolypoly_core::snapshot::{self, SimulationState};
-use rolypoly_gpu::{Compute, GpuBalls, GpuError, GpuSnapshot};
+use rolypoly_gpu::{Compute, GpuError, GpuSnapshot};
 use rolypoly_physics::{Balls, Event, World as PhysicsWorld};
 use serde::{Deserialize, Serialize};
 
@@ -27,8 +27,6 @@ pub struct Run {
     pub scene: Scene,
     /// The seed it was made with.
     pub seed: u64,
-    /// The balls, where the GPU engine steps them (the world then holds none).
-    pub gpu: Option<GpuBalls>,
     /// The GPU engine's balls as the scene made them, before they moved to
     /// the GPU: their sizes and masses in double precision, as the trace's
     /// scene line gives them.
@@ -51,25 +49,19 @@ pub enum MakeError {
 impl Run {
     /// `scene`'s world from `seed`, its balls stepped by `engine`.
     pub fn new(scene: Scene, seed: u64, engine: Engine) -> Result<Run, MakeError> {
-        let mut world = PhysicsWorld::new(scene.data.world.clone(), seed)
+        let world = PhysicsWorld::new(scene.data.world.clone(), seed)
             .map_err(|e| MakeError::Build(format!("cannot build {}: {e}", scene.name)))?;
-        let (gpu, made) = match engine {
-            Engine::Cpu => (None, None),
-            Engine::Gpu => {
-                let made = world.balls().clone();
-                let compute = Compute::headless().map_err(MakeError::Gpu)?;
-                let mut gpu = GpuBalls::on_compute(&compute, &mut world).map_err(MakeError::Gpu)?;
-                // Its impacts reported as the CPU engine's world reports them.
-                gpu.listen(true);
-                (Some(gpu), Some(made))
-            }
-        };
-        let sim = Simulation::new(world, scene.data.effects.clone(), seed);
+        let made = (engine == Engine::Gpu).then(|| world.balls().clone());
+        let mut sim = Simulation::new(world, scene.data.effects.clone(), seed);
+        if engine == Engine::Gpu {
+            let compute = Compute::headless().map_err(MakeError::Gpu)?;
+            sim.move_balls_to_compute(&compute)
+                .map_err(MakeError::Gpu)?;
+        }
         Ok(Run {
             sim,
             scene,
             seed,
-            gpu,
             made,
             pending: Vec::new(),
             dropped: 0,
@@ -78,17 +70,13 @@ impl Run {
 
     /// The engine that steps the balls.
     pub fn engine(&self) -> Engine {
-        if self.gpu.is_some() {
-            Engine::Gpu
-        } else {
-            Engine::Cpu
-        }
+        self.sim.engine()
     }
 
     /// One fixed step, as the program's `Simulation::tick` takes it,
     /// keeping the events.
     pub fn tick(&mut self) -> Result<(), GpuError> {
-        self.sim.tick_with(self.gpu.as_mut())?;
+        self.sim.step()?;
         self.keep_events();
         Ok(())
     }
@@ -111,20 +99,17 @@ impl Run {
 
     /// The balls now: the world's own, or read back from the GPU.
     pub fn balls(&self) -> Result<Cow<'_, Balls>, GpuError> {
-        match &self.gpu {
-            None => Ok(Cow::Borrowed(self.sim.world.balls())),
-            Some(gpu) => Ok(Cow::Owned(gpu.read()?.to_balls())),
-        }
+        self.sim.balls.read(&self.sim.world)
     }
 
     /// The balls for the trace's scene line: on the GPU engine, their
     /// sizes and masses as the scene made them (thrown ones as read back),
     /// as `rolypoly simulate` writes them.
     pub fn scene_balls(&self) -> Result<Option<Balls>, GpuError> {
-        let (Some(gpu), Some(made)) = (&self.gpu, &self.made) else {
+        let (Engine::Gpu, Some(made)) = (self.engine(), &self.made) else {
             return Ok(None);
         };
-        let now = gpu.read()?.to_balls();
+        let now = self.balls()?;
         let exact = |made: &[f64], now: &[f64]| -> Vec<f64> {
             made.iter()
                 .chain(now.iter().skip(made.len()))
@@ -140,27 +125,6 @@ impl Run {
             now.tints().to_vec(),
             now.alive().to_vec(),
         )))
-    }
-
-    /// Whether the GPU engine steps the balls.
-    pub fn on_gpu(&self) -> bool {
-        self.gpu.is_some()
-    }
-
-    /// `report` on the world with every ball in it: on the GPU engine its
-    /// balls are read back and put into the world for the while, as
-    /// `rolypoly simulate` does for its trace.
-    pub fn with_balls<T>(
-        &mut self,
-        report: impl FnOnce(&mut Simulation) -> T,
-    ) -> Result<T, GpuError> {
-        let Some(gpu) = &self.gpu else {
-            return Ok(report(&mut self.sim));
-        };
-        self.sim.world.put_balls(gpu.read()?.to_balls());
-        let out = report(&mut self.sim);
-        self.sim.world.take_balls();
-        Ok(out)
     }
 }
 
@@ -240,11 +204,12 @@ impl Saved {
 
 impl Run {
     /// A copy of the state, the GPU engine's copied back.
-    pub fn save(&self) -> Result<Saved, GpuError> {
-        let gpu = match &self.gpu {
-            None => None,
-            Some(gpu) => Some((gpu.snapshot()?, self.made.clone())),
-        };
+    pub fn save(&mut self) -> Result<Saved, GpuError> {
+        let gpu = self
+            .sim
+            .balls
+            .snapshot()?
+            .map(|snapshot| (snapshot, self.made.clone()));
         Ok(Saved {
             sim: self.sim.clone(),
             scene: self.scene.clone(),
@@ -258,23 +223,17 @@ impl Run {
     /// Back to `saved`, taken on the same engine (on the GPU engine, of a
     /// world of the same scene); else refused, the world unchanged.
     pub fn restore(&mut self, saved: &Saved) -> Result<(), GpuError> {
-        match (&mut self.gpu, &saved.gpu) {
-            (None, None) => {}
-            (Some(gpu), Some((snapshot, made))) => {
-                gpu.restore(snapshot)?;
-                self.made.clone_from(made);
-            }
-            (ours, _) => {
-                let engine = |gpu: bool| if gpu { "gpu" } else { "cpu" };
-                return Err(GpuError::Unsupported(format!(
-                    "a snapshot of a world on the {} engine cannot be put back into a world on \
-                     the {} engine",
-                    engine(saved.gpu.is_some()),
-                    engine(ours.is_some())
-                )));
-            }
-        }
+        let (snapshot, made) = match &saved.gpu {
+            Some((snapshot, made)) => (Some(snapshot), made.clone()),
+            None => (None, None),
+        };
+        // This world's engine takes the state back (or refuses it); the
+        // saved simulation's is another world's, or none.
+        self.sim.balls.restore(snapshot)?;
+        let balls = std::mem::take(&mut self.sim.balls);
         self.sim = saved.sim.clone();
+        self.sim.balls = balls;
+        self.made = made;
         self.scene = saved.scene.clone();
         self.seed = saved.seed;
         self.pending.clone_from(&saved.pending);

@@ -3,6 +3,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyModule};
+use rolypoly_core::engine::Engine;
 use rolypoly_core::series::{Sample, columns};
 use rolypoly_physics::Event;
 
@@ -27,8 +28,9 @@ pub fn samples(run: &mut Run, steps: u64, every: u64) -> PyResult<Vec<Sample>> {
 /// The sample of `run` now, whose last step reported `events`; on the GPU
 /// engine, which counts no impulses, without them.
 fn sample(run: &mut Run, events: &[Event]) -> PyResult<Sample> {
-    let gpu = run.on_gpu();
+    let gpu = run.engine() == Engine::Gpu;
     let sample = run
+        .sim
         .with_balls(|sim| Sample::of(&sim.world, events))
         .map_err(|e| gpu_error(&e))?;
     Ok(if gpu {

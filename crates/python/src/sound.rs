@@ -47,7 +47,7 @@ pub fn sound<'py>(
         let mut recording = Recording::new(&run.scene.data.sound, &run.sim, listener_of(&camera));
         for _ in 0..steps {
             run.tick()?;
-            run.with_balls(|sim| recording.hear(sim))??;
+            recording.hear(&mut run.sim)?;
         }
         Ok::<_, GpuError>(recording.frames().to_vec())
     });

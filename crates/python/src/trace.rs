@@ -28,7 +28,8 @@ pub fn write_trace(run: &mut Run, path: &Path, steps: u64, every: u64) -> PyResu
         }
     }
     .map_err(|e| trace_error(&e))?;
-    run.with_balls(|sim| writer.state(&sim.world, &[]))
+    run.sim
+        .with_balls(|sim| writer.state(&sim.world, &[]))
         .map_err(|e| gpu_error(&e))?
         .map_err(|e| trace_error(&e))?;
     let mut since: Vec<Event> = Vec::new();
@@ -36,7 +37,8 @@ pub fn write_trace(run: &mut Run, path: &Path, steps: u64, every: u64) -> PyResu
         run.tick().map_err(|e| gpu_error(&e))?;
         since.extend_from_slice(run.last_events());
         if step % every == 0 || step == steps {
-            run.with_balls(|sim| writer.state(&sim.world, &since))
+            run.sim
+                .with_balls(|sim| writer.state(&sim.world, &since))
                 .map_err(|e| gpu_error(&e))?
                 .map_err(|e| trace_error(&e))?;
             since.clear();

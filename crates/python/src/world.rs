@@ -203,6 +203,7 @@ impl World {
     fn energy(&mut self) -> PyResult<Energy> {
         let energy = self
             .run
+            .sim
             .with_balls(|sim| sim.world.energy())
             .map_err(|e| gpu_error(&e))?;
         Ok(Energy {
@@ -268,12 +269,9 @@ impl World {
         if let Some(problem) = speed_problem("the thrown ball", velocity) {
             return Err(value_error(problem));
         }
-        match &mut run.gpu {
-            Some(gpu) => gpu
-                .throw_ball(&mut run.sim.world, position, velocity)
-                .map_err(|e| gpu_error(&e)),
-            None => Ok(run.sim.world.throw_ball(position, velocity)),
-        }
+        run.sim
+            .throw_ball(position, velocity)
+            .map_err(|e| gpu_error(&e))
     }
 
     /// Launches the fireball from ``position`` towards ``direction``, or
@@ -324,7 +322,7 @@ impl World {
     /// :meth:`restore`: a world restored steps on to the same bits. On
     /// the GPU engine its buffers are copied back whole (about 600 bytes
     /// a ball).
-    fn snapshot(&self) -> PyResult<Snapshot> {
+    fn snapshot(&mut self) -> PyResult<Snapshot> {
         let saved = self.run.save().map_err(|e| gpu_error(&e))?;
         Ok(Snapshot { saved })
     }
@@ -358,7 +356,7 @@ impl World {
     /// adapter there too.
     #[allow(clippy::type_complexity)]
     fn __reduce__<'py>(
-        &self,
+        &mut self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, (Scene, u64, &'static str, Snapshot))> {
         let snapshot = self.snapshot()?;

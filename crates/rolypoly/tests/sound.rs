@@ -10,7 +10,7 @@ use std::process::{Command, Output};
 
 use rolypoly::scene::{Overrides, load_scene_with};
 use rolypoly::simulation::Simulation;
-use rolypoly::sound::{Recording, ticks_heard};
+use rolypoly::sound::{Recording, StandIns, ticks_heard};
 use rolypoly_physics::World;
 use rolypoly_sound::{CEILING, Listener, to_pcm};
 use spectrum::spectral_peak;
@@ -143,6 +143,68 @@ fn on_the_gpu_engine_a_ball_of_half_the_radius_rings_an_octave_higher_as_on_the_
                 "{g:.0} Hz on the GPU, {c:.0} on the CPU"
             );
         }
+    }
+}
+
+/// The live sound of 0.6 s of `scene` on `engine`, as the window hears
+/// it (the GPU engine's balls through their stand-ins), as mono samples.
+fn live_sound(scene: &Path, engine: rolypoly::engine::Engine) -> Vec<f32> {
+    let overrides = Overrides {
+        engine: Some(engine),
+        ..Overrides::default()
+    };
+    let scene = load_scene_with(Some(scene), &overrides).expect("the scene loads");
+    let world = World::new(scene.world.clone(), 1).unwrap();
+    let mut sim = Simulation::new(world, scene.effects, 1);
+    if engine == rolypoly::engine::Engine::Gpu {
+        rolypoly_gpu::set_program_gpu_timeout(std::time::Duration::from_secs(600));
+        let compute = rolypoly_gpu::Compute::headless().expect("an adapter");
+        sim.move_balls_to_compute(&compute).unwrap();
+    }
+    let ear = Listener {
+        position: glam::DVec3::new(0.0, 2.5, 3.0),
+        forward: glam::DVec3::NEG_Z,
+    };
+    let mut track = rolypoly_sound::Soundtrack::new(&scene.sound, &sim.world);
+    let mut stand_ins = StandIns::default();
+    let mut mono = Vec::new();
+    for _ in 0..(0.6 / scene.world.solver.dt).round() as u64 {
+        sim.step().unwrap();
+        match engine {
+            rolypoly::engine::Engine::Cpu => track.hear_step(&sim.world, sim.last_events(), &ear),
+            rolypoly::engine::Engine::Gpu => {
+                let balls = stand_ins.after_step(&sim).unwrap();
+                track.hear_step_among(&sim.world, balls, sim.last_events(), &ear);
+            }
+        }
+        mono.extend(track.take_frames().iter().map(|f| (f[0] + f[1]) / 2.0));
+    }
+    mono
+}
+
+#[test]
+fn the_windows_live_sound_rings_the_gpu_engines_balls_as_the_cpu_engines() {
+    use rolypoly::engine::Engine;
+    for (radius, mass) in [(0.12, 0.25), (0.06, 0.25 / 8.0)] {
+        let scene = head_on_scene(&format!("live-head-on-{radius}.toml"), radius, mass);
+        let gpu = live_sound(&scene, Engine::Gpu);
+        let cpu = live_sound(&scene, Engine::Cpu);
+        let loudest = |s: &[f32]| s.iter().fold(0.0f32, |m, x| m.max(x.abs()));
+        let (gpu_peak, cpu_peak) = (loudest(&gpu), loudest(&cpu));
+        assert!(cpu_peak > 1e-3, "radius {radius}: heard on the CPU engine");
+        // Heard as loud (their masses and sizes), from about where they met.
+        assert!(
+            (gpu_peak / cpu_peak - 1.0).abs() < 0.1,
+            "radius {radius}: loudest {gpu_peak} on the GPU engine, {cpu_peak} on the CPU"
+        );
+        let (g, c) = (
+            spectral_peak(&gpu, 100.0, 23_000.0),
+            spectral_peak(&cpu, 100.0, 23_000.0),
+        );
+        assert!(
+            (g / c - 1.0).abs() < 0.01,
+            "radius {radius}: {g:.0} Hz on the GPU engine, {c:.0} on the CPU"
+        );
     }
 }
 

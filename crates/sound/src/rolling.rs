@@ -2,7 +2,7 @@
 //! rumbles, quietly, as loud as its speed; the rumble ends when it rests.
 
 use glam::DVec3;
-use rolypoly_physics::World;
+use rolypoly_physics::{Balls, World};
 
 use crate::listener::Listener;
 use crate::noise::{Band, BandPass, WhiteNoise};
@@ -40,7 +40,7 @@ impl Rolling {
     }
 
     /// Each channel's amplitude now: the bodies' rumbles, summed by energy.
-    fn target(world: &World, listener: &Listener) -> [f32; 2] {
+    fn target(world: &World, balls: &Balls, listener: &Listener) -> [f32; 2] {
         let mut energy = [0.0f64; 2];
         let mut add = |point: DVec3, speed: f64, radius: f64| {
             if speed > RESTING {
@@ -51,7 +51,7 @@ impl Rolling {
                 }
             }
         };
-        let (balls, room) = (world.balls(), world.room());
+        let room = world.room();
         for i in 0..balls.len() {
             let (p, r) = (balls.positions()[i], balls.radii()[i]);
             if balls.alive()[i] && room.nearest_distance(p) - r < TOUCHING {
@@ -68,9 +68,15 @@ impl Rolling {
     }
 
     /// Adds the rumble of the block that ends with `world` as it is now.
-    pub fn render(&mut self, frames: &mut [[f32; 2]], world: &World, listener: &Listener) {
+    pub fn render(
+        &mut self,
+        frames: &mut [[f32; 2]],
+        world: &World,
+        balls: &Balls,
+        listener: &Listener,
+    ) {
         let start = self.amplitude;
-        let end = Self::target(world, listener);
+        let end = Self::target(world, balls, listener);
         self.amplitude = end;
         if start == [0.0; 2] && end == [0.0; 2] {
             return;

@@ -5,7 +5,7 @@
 //! by the volume and limited.
 
 use glam::DVec3;
-use rolypoly_physics::{Event, EventKind, Surface, World};
+use rolypoly_physics::{Balls, Event, EventKind, Surface, World};
 
 use crate::chime::{CLAPPER_MASS, Chime, Chimes};
 use crate::config::{SAMPLE_RATE, SoundConfig};
@@ -109,6 +109,19 @@ impl Soundtrack {
     /// Makes the samples of the step `world` just took, whose impacts are
     /// `events`, heard by `listener`.
     pub fn hear_step(&mut self, world: &World, events: &[Event], listener: &Listener) {
+        self.hear_step_among(world, world.balls(), events, listener);
+    }
+
+    /// As [`Soundtrack::hear_step`], the balls struck being `balls` and not
+    /// the world's: those of balls stepped elsewhere (the GPU engine's,
+    /// stood in for by their sizes and masses where they last struck).
+    pub fn hear_step_among(
+        &mut self,
+        world: &World,
+        balls: &Balls,
+        events: &[Event],
+        listener: &Listener,
+    ) {
         let dt = world.config().solver.dt;
         self.steps += 1;
         let end = (self.steps as f64 * dt * self.sample_rate).round() as u64;
@@ -122,26 +135,30 @@ impl Soundtrack {
             return;
         }
         for event in events {
-            for strike in self.strikes_of(world, event, offset).iter().flatten() {
-                self.strike(world, strike, listener);
+            for strike in self
+                .strikes_of(world, balls, event, offset)
+                .iter()
+                .flatten()
+            {
+                self.strike(world, balls, strike, listener);
             }
         }
         let mut chimed = std::mem::take(&mut self.chimed);
         chimed.clear();
         self.chimes.strikes(world, &mut chimed);
         for chime in &chimed {
-            let strike = self.chime_strike(world, chime, offset + dt);
-            self.strike(world, &strike, listener);
+            let strike = self.chime_strike(world, balls, chime, offset + dt);
+            self.strike(world, balls, &strike, listener);
         }
         self.chimed = chimed;
         let block = &mut self.frames[first..];
         let at = |body: Body| match body {
-            Body::Ball(i) => world.balls().positions().get(i).copied(),
+            Body::Ball(i) => balls.positions().get(i).copied(),
             Body::Shell(t) | Body::Bell(t) => world.tumblers().get(t).map(|t| t.center_of_mass()),
             Body::Board(..) => None,
         };
         self.voices.render(block, listener, at);
-        self.rolling.render(block, world, listener);
+        self.rolling.render(block, world, balls, listener);
         self.roar.render(block, world.fireball(), listener);
         let volume = self.config.volume as f32;
         for frame in block.iter_mut() {
@@ -163,21 +180,26 @@ impl Soundtrack {
     }
 
     /// Sounds `strike`, making its body's voice if need be.
-    fn strike(&mut self, world: &World, strike: &Strike, listener: &Listener) {
+    fn strike(&mut self, world: &World, balls: &Balls, strike: &Strike, listener: &Listener) {
         let sample_rate = self.sample_rate;
         let config = &self.config;
         self.voices.strike(strike, listener, || {
-            let modes = modes_of(config, world, strike.body);
+            let modes = modes_of(config, world, balls, strike.body);
             ModalBank::new(&modes, strike.loudness, sample_rate)
         });
     }
 
     /// The strikes of `event`, a step that began `offset` seconds after the
     /// block's start.
-    fn strikes_of(&self, world: &World, event: &Event, offset: f64) -> [Option<Strike>; 2] {
+    fn strikes_of(
+        &self,
+        world: &World,
+        balls: &Balls,
+        event: &Event,
+        offset: f64,
+    ) -> [Option<Strike>; 2] {
         let at = offset + event.within_step;
         let config = world.config();
-        let balls = world.balls();
         let ball = |i: usize| {
             let r = *balls.radii().get(i)?;
             Some(Side {
@@ -252,14 +274,14 @@ impl Soundtrack {
                 at,
                 duration,
                 impulse,
-                loudness: loudness(&self.config, world, body.body),
+                loudness: loudness(&self.config, world, balls, body.body),
             })
         })
     }
 
     /// The strike of a bell's clapper, at `at` seconds from the block's
     /// start.
-    fn chime_strike(&self, world: &World, chime: &Chime, at: f64) -> Strike {
+    fn chime_strike(&self, world: &World, balls: &Balls, chime: &Chime, at: f64) -> Strike {
         let contact = Contact {
             mass: reduced(CLAPPER_MASS, BELL_MASS),
             radius: CLAPPER_RADIUS,
@@ -274,7 +296,7 @@ impl Soundtrack {
             at,
             duration: contact.duration(chime.speed),
             impulse: chime.impulse,
-            loudness: loudness(&self.config, world, body),
+            loudness: loudness(&self.config, world, balls, body),
         }
     }
 }
@@ -335,12 +357,9 @@ fn board_of(s: Surface, point: DVec3) -> Body {
 }
 
 /// The mass (kg) and radiating size (m) of `body`.
-fn mass_and_size(config: &SoundConfig, world: &World, body: Body) -> (f64, f64) {
+fn mass_and_size(config: &SoundConfig, world: &World, balls: &Balls, body: Body) -> (f64, f64) {
     match body {
-        Body::Ball(i) => {
-            let balls = world.balls();
-            (balls.masses()[i], balls.radii()[i])
-        }
+        Body::Ball(i) => (balls.masses()[i], balls.radii()[i]),
         Body::Board(s, ..) => {
             let s = Surface::ALL[s];
             let (side, thickness) = board_size(s);
@@ -358,15 +377,15 @@ fn mass_and_size(config: &SoundConfig, world: &World, body: Body) -> (f64, f64) 
 /// The output a unit impulse gives a mode of weight 1 of `body` at 1 m
 /// (full scale per N s): its surface's velocity 1/m radiated from its
 /// size, spreading as size / distance.
-fn loudness(config: &SoundConfig, world: &World, body: Body) -> f64 {
-    let (mass, size) = mass_and_size(config, world, body);
+fn loudness(config: &SoundConfig, world: &World, balls: &Balls, body: Body) -> f64 {
+    let (mass, size) = mass_and_size(config, world, balls, body);
     AIR_IMPEDANCE * size / (mass * FULL_SCALE_PASCALS)
 }
 
 /// `body`'s modes, from the world's sizes and `config`'s materials.
-fn modes_of(config: &SoundConfig, world: &World, body: Body) -> Vec<Mode> {
+fn modes_of(config: &SoundConfig, world: &World, balls: &Balls, body: Body) -> Vec<Mode> {
     match body {
-        Body::Ball(i) => modes::sphere(world.balls().radii()[i], &config.balls.properties()),
+        Body::Ball(i) => modes::sphere(balls.radii()[i], &config.balls.properties()),
         Body::Board(s, ..) => {
             let s = Surface::ALL[s];
             let (side, thickness) = board_size(s);

@@ -3,7 +3,7 @@
 //! the grid) and the counts the CPU keeps, so that an engine put back
 //! steps on to the same bits.
 
-use super::GpuBalls;
+use super::{GpuBalls, StepReport};
 use crate::GpuError;
 use crate::layout::Params;
 use rolypoly_physics::Event;
@@ -18,6 +18,9 @@ pub struct GpuSnapshot {
     params: Params,
     steps: u64,
     catches: Vec<Event>,
+    /// The reports of the last steps, not yet due (see
+    /// [`crate::REPORT_DELAY`]): their pushes are still to be given.
+    reports: Vec<StepReport>,
     /// Each stored buffer's bytes, in binding order.
     buffers: Vec<Vec<u8>>,
 }
@@ -29,6 +32,7 @@ struct Carried {
     params: Vec<u8>,
     steps: u64,
     catches: Vec<Event>,
+    reports: Vec<StepReport>,
     buffers: Vec<Vec<u8>>,
 }
 
@@ -38,6 +42,7 @@ impl From<GpuSnapshot> for Carried {
             params: bytemuck::bytes_of(&snapshot.params).to_vec(),
             steps: snapshot.steps,
             catches: snapshot.catches,
+            reports: snapshot.reports,
             buffers: snapshot.buffers,
         }
     }
@@ -58,6 +63,7 @@ impl TryFrom<Carried> for GpuSnapshot {
             params,
             steps: carried.steps,
             catches: carried.catches,
+            reports: carried.reports,
             buffers: carried.buffers,
         })
     }
@@ -72,8 +78,10 @@ impl GpuSnapshot {
 
 impl GpuBalls {
     /// Copies the engine's state back: its buffers whole (for a million
-    /// balls some 600 MB) and its step count.
-    pub fn snapshot(&self) -> Result<GpuSnapshot, GpuError> {
+    /// balls some 600 MB), its step count, and the reports of the last
+    /// steps (waited for, if still on their way).
+    pub fn snapshot(&mut self) -> Result<GpuSnapshot, GpuError> {
+        self.reports.read_all(&self.device, &self.wait)?;
         let steps = self.steps;
         let buffers = self
             .buffers
@@ -88,6 +96,7 @@ impl GpuBalls {
             params: self.params,
             steps,
             catches: self.events.clone(),
+            reports: self.reports.read_reports().cloned().collect(),
             buffers,
         })
     }
@@ -109,6 +118,8 @@ impl GpuBalls {
                     .into(),
             ));
         }
+        self.reports
+            .replace(&self.device, &self.wait, &snapshot.reports)?;
         for (buffer, bytes) in self.buffers.stored().zip(&snapshot.buffers) {
             self.queue.write_buffer(buffer, 0, bytes);
         }

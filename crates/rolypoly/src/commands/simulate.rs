@@ -6,10 +6,11 @@ use std::io::{self, Write};
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
-use rolypoly_gpu::{Compute, GpuBalls};
+use rolypoly_gpu::Compute;
 use rolypoly_physics::{Event, EventKind, World};
 
 use crate::cli::{SimulateArgs, steps_for};
+use crate::engine::Engine;
 use crate::series::{self, Sample, SeriesWriter};
 use crate::simulation::Simulation;
 use crate::trace::{self, TraceWriter, event_kind_name};
@@ -41,15 +42,9 @@ pub fn simulate(
     if let Some(writer) = writer.as_mut() {
         writer.scene(&sim.world, seed)?;
     }
-    let mut balls = if gpu {
-        let compute = Compute::headless()?;
-        let mut balls = GpuBalls::on_compute(&compute, &mut sim.world)?;
-        // The impacts are counted as the CPU engine's are.
-        balls.listen(true);
-        Some(balls)
-    } else {
-        None
-    };
+    if gpu {
+        sim.move_balls_to_compute(&Compute::headless()?)?;
+    }
     let steps = match (args.length.steps, args.length.seconds) {
         (Some(steps), _) => steps,
         (None, Some(seconds)) => steps_for(seconds, dt),
@@ -67,7 +62,6 @@ pub fn simulate(
         (Some(path), Some(mut writer)) => {
             let summary = run(
                 &mut sim,
-                balls.as_mut(),
                 scene_name,
                 &options,
                 Some(&mut writer),
@@ -85,14 +79,7 @@ pub fn simulate(
             }
         }
         _ => {
-            let summary = run::<io::Sink>(
-                &mut sim,
-                balls.as_mut(),
-                scene_name,
-                &options,
-                None,
-                series.as_mut(),
-            )?;
+            let summary = run::<io::Sink>(&mut sim, scene_name, &options, None, series.as_mut())?;
             if let Some(series) = series {
                 series.finish()?;
             }
@@ -170,14 +157,13 @@ fn event_index(kind: &EventKind) -> usize {
 }
 
 /// Runs `options.steps` steps of `sim`, as every run steps it (the world,
-/// the balls on `gpu` where given, the effects). With a trace (whose scene
+/// its balls on either engine, the effects). With a trace (whose scene
 /// line is written), writes the state at step 0, then every
 /// `options.every` steps and at the last step, each state line carrying
 /// the events since the previous one; with a series, its line at step 0,
 /// every `options.series_every` steps and at the last step.
 pub fn run<W: Write>(
     sim: &mut Simulation,
-    mut gpu: Option<&mut GpuBalls>,
     scene: &str,
     options: &Options,
     mut trace: Option<&mut TraceWriter<W>>,
@@ -189,35 +175,40 @@ pub fn run<W: Write>(
         sim.world.launch_fireball(None);
     }
     if let Some(trace) = trace.as_deref_mut() {
-        with_balls(&mut sim.world, gpu.as_deref(), |world| {
-            trace.state(world, &[])
-        })??;
+        sim.with_balls(|sim| trace.state(&sim.world, &[]))??;
     }
     if let Some(series) = series.as_deref_mut() {
-        series.sample(&sample(&mut sim.world, gpu.as_deref(), &[])?)?;
+        series.sample(&sample(sim, &[])?)?;
     }
     let series_every = options.series_every.max(1);
 
     let mut events = [0u64; 6];
     let mut pending = Vec::new();
     for step in 1..=options.steps {
-        sim.tick_with(gpu.as_deref_mut())?;
-        pending.extend_from_slice(sim.last_events());
-        for event in &pending {
+        sim.step()?;
+        let mut new = sim.last_events().to_vec();
+        if step == options.steps
+            && let Some(mut gpu) = sim.balls.gpu_balls()
+        {
+            // The last steps' reports are still on their way: their events
+            // are counted and traced with the last step's.
+            gpu.take_events_in_flight()?;
+            gpu.take_events(&mut new);
+        }
+        for event in &new {
             events[event_index(&event.kind)] += 1;
         }
+        pending.extend_from_slice(&new);
         if let Some(series) = series.as_deref_mut()
             && (step % series_every == 0 || step == options.steps)
         {
             let last = sim.last_events().to_vec();
-            series.sample(&sample(&mut sim.world, gpu.as_deref(), &last)?)?;
+            series.sample(&sample(sim, &last)?)?;
         }
         match trace.as_deref_mut() {
             Some(trace) => {
                 if step % every == 0 || step == options.steps {
-                    with_balls(&mut sim.world, gpu.as_deref(), |world| {
-                        trace.state(world, &pending)
-                    })??;
+                    sim.with_balls(|sim| trace.state(&sim.world, &pending))??;
                     pending.clear();
                 }
             }
@@ -226,35 +217,17 @@ pub fn run<W: Write>(
     }
 
     let wall = started.elapsed();
-    with_balls(&mut sim.world, gpu.as_deref(), |world| {
-        summarize(world, scene, options, wall, events)
-    })
+    Ok(sim.with_balls(|sim| summarize(&sim.world, scene, options, wall, events))?)
 }
 
-/// `report` on `world`, with the GPU engine's balls (if it steps them)
-/// read back and put into the world for the while.
-/// The series' sample of `world` now, whose last step reported `events`;
+/// The series' sample of `sim` now, whose last step reported `events`;
 /// on the GPU engine, which counts no impulses, without them.
-fn sample(world: &mut World, gpu: Option<&GpuBalls>, events: &[Event]) -> anyhow::Result<Sample> {
-    let sample = with_balls(world, gpu, |world| Sample::of(world, events))?;
-    Ok(match gpu {
-        Some(_) => sample.without_impulses(),
-        None => sample,
+fn sample(sim: &mut Simulation, events: &[Event]) -> anyhow::Result<Sample> {
+    let sample = sim.with_balls(|sim| Sample::of(&sim.world, events))?;
+    Ok(match sim.engine() {
+        Engine::Gpu => sample.without_impulses(),
+        Engine::Cpu => sample,
     })
-}
-
-fn with_balls<T>(
-    world: &mut World,
-    gpu: Option<&GpuBalls>,
-    report: impl FnOnce(&World) -> T,
-) -> anyhow::Result<T> {
-    let Some(balls) = gpu else {
-        return Ok(report(world));
-    };
-    world.put_balls(balls.read()?.to_balls());
-    let out = report(world);
-    world.take_balls();
-    Ok(out)
 }
 
 fn summarize(

@@ -124,7 +124,7 @@ impl Sandbox {
     /// at once.
     pub fn use_device(&mut self, device: Device) -> Result<(), Refused> {
         self.device = Some(device);
-        if self.scene.engine == Engine::Gpu && !self.sim.on_gpu() {
+        if self.scene.engine == Engine::Gpu && self.sim.engine() == Engine::Cpu {
             self.move_balls_to_gpu()?;
         }
         Ok(())
@@ -380,7 +380,7 @@ impl Sandbox {
         self.history.furthest = self.history.furthest.max(self.ticks);
         let (every, keep) = rewind::spacing(self.sim.world.config().solver.dt);
         // The GPU engine's balls are not copied back to the CPU to keep.
-        if self.ticks.is_multiple_of(every) && !self.sim.on_gpu() {
+        if self.ticks.is_multiple_of(every) && self.sim.engine() == Engine::Cpu {
             let snapshot = self.snapshot();
             self.history.keep(snapshot, keep);
         }
@@ -533,6 +533,7 @@ impl Sandbox {
         // The GPU engine's balls, read back: a digest is taken once a run.
         let gpu_balls = self
             .sim
+            .balls
             .gpu_balls()
             .map(|balls| balls.read().map(|s| s.to_balls()).ok());
         let state = format!(

@@ -6,8 +6,9 @@
 use rolypoly_render::Camera;
 use rolypoly_sound::{Listener, SoundConfig, Soundtrack};
 
+use crate::engine::Engine;
 use crate::simulation::Simulation;
-use crate::sound::listener_of;
+use crate::sound::{StandIns, listener_of};
 
 /// The window's sound: the run's soundtrack and the device it plays on.
 pub struct LiveSound {
@@ -18,6 +19,8 @@ pub struct LiveSound {
     output: Option<output::Output>,
     /// Samples heard and not yet queued, left and right.
     frames: Vec<[f32; 2]>,
+    /// The GPU engine's balls as heard, where it steps them.
+    stand_ins: StandIns,
 }
 
 impl LiveSound {
@@ -41,6 +44,7 @@ impl LiveSound {
             muted: false,
             output,
             frames: Vec::new(),
+            stand_ins: StandIns::default(),
         }
     }
 
@@ -72,8 +76,20 @@ impl LiveSound {
         if self.muted {
             return;
         }
-        self.track
-            .hear_step(&sim.world, sim.last_events(), &self.listener);
+        match sim.engine() {
+            Engine::Cpu => self
+                .track
+                .hear_step(&sim.world, sim.last_events(), &self.listener),
+            Engine::Gpu => {
+                // A GPU engine that cannot be read stops; the window says
+                // why from the simulation.
+                let Ok(balls) = self.stand_ins.after_step(sim) else {
+                    return;
+                };
+                self.track
+                    .hear_step_among(&sim.world, balls, sim.last_events(), &self.listener);
+            }
+        }
         self.frames.append(&mut self.track.take_frames());
         output.queue(&mut self.frames);
     }

@@ -10,6 +10,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use crate::engine::Engine;
 use anyhow::Context as _;
 use glam::{Vec2, Vec3};
 use rolypoly_physics::SphereSpec;
@@ -361,12 +362,10 @@ impl App {
             self.sandbox.playback.frozen(),
             self.mode == MouseMode::Grab,
         );
-        if let Some(balls) = sim.gpu_balls() {
-            self.hud_state.balls_total = balls.len();
-            self.hud_state.engine = format!("gpu on {}", balls.adapter());
-        } else {
-            self.hud_state.engine = "cpu".into();
+        if sim.engine() == Engine::Gpu {
+            self.hud_state.balls_total = sim.ball_count();
         }
+        self.hud_state.engine = sim.balls.describe();
         self.hud_state.time_scale = self.sandbox.playback.scale();
         self.hud_state.held = held_facts(&sim.world);
         let furthest = self.sandbox.timeline().1;
