@@ -151,6 +151,23 @@ impl Simulation {
         stepped
     }
 
+    /// Ends a run's last step: on the GPU engine, waits for the reports of
+    /// the steps still on their way and hands their events on now, as this
+    /// step's (to [`Simulation::last_events`] and the effects), so that a
+    /// run that ends here loses none. Their pushes still reach the tumblers
+    /// when due, so a run stepped on after it keeps its bits.
+    pub fn hand_on_events_in_flight(&mut self) -> Result<(), GpuError> {
+        let Some(mut gpu) = self.balls.gpu_balls() else {
+            return Ok(());
+        };
+        gpu.take_events_in_flight()?;
+        let first = self.events.len();
+        gpu.take_events(&mut self.events);
+        drop(gpu);
+        self.fx.consume(&self.events[first..], &self.world);
+        Ok(())
+    }
+
     /// The last tick's events: the world's, then the balls the GPU engine's
     /// fireball caught and their impacts.
     pub fn last_events(&self) -> &[Event] {

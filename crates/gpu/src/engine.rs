@@ -541,7 +541,7 @@ impl GpuBalls {
         self.impacts_dropped += report.impacts_dropped;
     }
 
-    /// Times a step found the report it was due to take not yet back from
+    /// Times a step found the step report it was due to take not yet back from
     /// the GPU and waited for it: none a step where the GPU keeps up with
     /// the steps asked of it.
     pub fn blocking_waits(&self) -> u64 {

@@ -81,6 +81,16 @@ impl Run {
         Ok(())
     }
 
+    /// A run's last step, as `rolypoly simulate` takes it: [`Run::tick`],
+    /// with the GPU engine's events still on their way handed on as its
+    /// own (see `Simulation::hand_on_events_in_flight`).
+    pub fn last_tick(&mut self) -> Result<(), GpuError> {
+        self.sim.step()?;
+        self.sim.hand_on_events_in_flight()?;
+        self.keep_events();
+        Ok(())
+    }
+
     /// The last step's events, kept for `World.events()` while there is room.
     fn keep_events(&mut self) {
         let step = self.sim.world.step_count();

@@ -34,7 +34,12 @@ pub fn write_trace(run: &mut Run, path: &Path, steps: u64, every: u64) -> PyResu
         .map_err(|e| trace_error(&e))?;
     let mut since: Vec<Event> = Vec::new();
     for step in 1..=steps {
-        run.tick().map_err(|e| gpu_error(&e))?;
+        if step == steps {
+            run.last_tick()
+        } else {
+            run.tick()
+        }
+        .map_err(|e| gpu_error(&e))?;
         since.extend_from_slice(run.last_events());
         if step % every == 0 || step == steps {
             run.sim

@@ -150,6 +150,46 @@ fn trace_to_a_file_and_summary_to_stdout() {
     assert_eq!(json_lines(&trace).len(), 1 + 3);
 }
 
+/// The count in a summary's "N collision events".
+fn events_counted(summary: &str) -> u64 {
+    let words: Vec<&str> = summary.split_whitespace().collect();
+    let at = words
+        .windows(2)
+        .position(|w| w == ["collision", "events"])
+        .unwrap_or_else(|| panic!("no event count in {summary}"));
+    words[at - 1].parse().expect("a count")
+}
+
+#[test]
+fn a_trace_written_every_few_steps_counts_each_event_once() {
+    for (seed, every) in [("1", "7"), ("3", "25")] {
+        let plain = rolypoly(&["simulate", "--seconds", "3", "--seed", seed]);
+        assert!(plain.status.success(), "{}", stderr(&plain));
+        let counted = events_counted(&stdout(&plain));
+        assert!(counted > 50, "seed {seed}: {counted}");
+        let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("every-{seed}.jsonl"));
+        let traced = rolypoly(&[
+            "simulate",
+            "--seconds",
+            "3",
+            "--seed",
+            seed,
+            "--every",
+            every,
+            "--trace",
+            path.to_str().unwrap(),
+        ]);
+        assert!(traced.status.success(), "{}", stderr(&traced));
+        assert_eq!(events_counted(&stdout(&traced)), counted, "seed {seed}");
+        let trace = std::fs::read_to_string(&path).unwrap();
+        let in_trace: usize = json_lines(&trace)
+            .iter()
+            .filter_map(|line| line["events"].as_array().map(Vec::len))
+            .sum();
+        assert_eq!(in_trace as u64, counted, "seed {seed}: the trace's events");
+    }
+}
+
 #[test]
 fn unwritable_trace_names_the_file() {
     let output = rolypoly(&[

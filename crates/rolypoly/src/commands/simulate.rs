@@ -186,19 +186,14 @@ pub fn run<W: Write>(
     let mut pending = Vec::new();
     for step in 1..=options.steps {
         sim.step()?;
-        let mut new = sim.last_events().to_vec();
-        if step == options.steps
-            && let Some(mut gpu) = sim.balls.gpu_balls()
-        {
-            // The last steps' reports are still on their way: their events
-            // are counted and traced with the last step's.
-            gpu.take_events_in_flight()?;
-            gpu.take_events(&mut new);
+        if step == options.steps {
+            // The GPU engine's last reports are still on their way.
+            sim.hand_on_events_in_flight()?;
         }
-        for event in &new {
+        for event in sim.last_events() {
             events[event_index(&event.kind)] += 1;
         }
-        pending.extend_from_slice(&new);
+        pending.extend_from_slice(sim.last_events());
         if let Some(series) = series.as_deref_mut()
             && (step % series_every == 0 || step == options.steps)
         {
