@@ -155,7 +155,8 @@ impl Simulation {
     /// the steps still on their way and hands their events on now, as this
     /// step's (to [`Simulation::last_events`] and the effects), so that a
     /// run that ends here loses none. Their pushes still reach the tumblers
-    /// when due, so a run stepped on after it keeps its bits.
+    /// when due, so the physics of a run stepped on after it keeps its
+    /// bits (its effects saw those events two steps early).
     pub fn hand_on_events_in_flight(&mut self) -> Result<(), GpuError> {
         let Some(mut gpu) = self.balls.gpu_balls() else {
             return Ok(());

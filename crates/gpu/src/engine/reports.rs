@@ -58,6 +58,7 @@ struct InFlight {
     listened: bool,
 }
 
+/// A step's report, on its way back or read.
 enum Pending {
     InFlight(u64, InFlight),
     Read(StepReport),
